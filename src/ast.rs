@@ -1,0 +1,577 @@
+//! The untyped RAPID syntax tree, as written: names keep their original spelling, every node
+//! carries a [`Span`]. Produced by `parse`, consumed by `sema`.
+//!
+//! Names are compared case-folded everywhere (RAPID is case-insensitive); use
+//! [`Ident::folded`] rather than comparing `node` strings directly.
+
+use crate::source::{Span, Spanned};
+
+/// An identifier with its original spelling and position.
+pub type Ident = Spanned<String>;
+
+impl Ident {
+    /// The case-folded (ASCII upper-case) spelling used for all name comparisons.
+    pub fn folded(&self) -> String {
+        self.node.to_ascii_uppercase()
+    }
+
+    /// Case-insensitive comparison with a name.
+    pub fn is(&self, name: &str) -> bool {
+        self.node.eq_ignore_ascii_case(name)
+    }
+}
+
+/// One parsed file: one or more modules.
+#[derive(Debug, Clone)]
+pub struct File {
+    /// The modules, in file order.
+    pub modules: Vec<Module>,
+    /// The whole file.
+    pub span: Span,
+}
+
+/// `MODULE name [(attrs)] … ENDMODULE`.
+#[derive(Debug, Clone)]
+pub struct Module {
+    /// Module name.
+    pub name: Ident,
+    /// Attributes in parentheses after the name.
+    pub attrs: Vec<Spanned<ModuleAttr>>,
+    /// Declarations and routines, in source order.
+    pub items: Vec<ModuleItem>,
+    /// From `MODULE` to `ENDMODULE`.
+    pub span: Span,
+}
+
+/// Module attributes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModuleAttr {
+    /// `SYSMODULE`
+    SysModule,
+    /// `NOSTEPIN`
+    NoStepIn,
+    /// `READONLY`
+    ReadOnly,
+    /// `VIEWONLY`
+    ViewOnly,
+    /// `NOVIEW`
+    NoView,
+}
+
+/// Something declared at module level.
+#[derive(Debug, Clone)]
+pub enum ModuleItem {
+    /// `RECORD … ENDRECORD`
+    Record(RecordDecl),
+    /// `ALIAS base name;`
+    Alias(AliasDecl),
+    /// `VAR`/`PERS`/`CONST` data.
+    Data(DataDecl),
+    /// `PROC`/`FUNC`/`TRAP`.
+    Routine(Routine),
+    /// A placeholder (`<TDN>`, `<DDN>`, `<RDN>`) standing for a declaration.
+    Placeholder(Spanned<Placeholder>),
+}
+
+/// `[LOCAL] RECORD name  type comp; …  ENDRECORD`.
+#[derive(Debug, Clone)]
+pub struct RecordDecl {
+    /// `LOCAL` was given.
+    pub local: bool,
+    /// Type name.
+    pub name: Ident,
+    /// Components in order.
+    pub fields: Vec<RecordField>,
+    /// From `RECORD` (or `LOCAL`) to `ENDRECORD`.
+    pub span: Span,
+}
+
+/// One `type name [{dims}];` line of a record.
+#[derive(Debug, Clone)]
+pub struct RecordField {
+    /// Component type name.
+    pub ty: Ident,
+    /// Component name.
+    pub name: Ident,
+    /// Array dimensions, empty for a scalar.
+    pub dims: Vec<Expr>,
+    /// The whole line.
+    pub span: Span,
+}
+
+/// `[LOCAL] ALIAS base name;`.
+#[derive(Debug, Clone)]
+pub struct AliasDecl {
+    /// `LOCAL` was given.
+    pub local: bool,
+    /// The existing type.
+    pub base: Ident,
+    /// The new name.
+    pub name: Ident,
+    /// The whole declaration.
+    pub span: Span,
+}
+
+/// Storage class of data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Storage {
+    /// `VAR`
+    Var,
+    /// `PERS`
+    Pers,
+    /// `CONST`
+    Const,
+}
+
+/// `[LOCAL|TASK] VAR|PERS|CONST type name [{dims}] [:= init];`.
+#[derive(Debug, Clone)]
+pub struct DataDecl {
+    /// `LOCAL` was given.
+    pub local: bool,
+    /// `TASK` was given.
+    pub task: bool,
+    /// VAR, PERS or CONST.
+    pub storage: Storage,
+    /// Type name.
+    pub ty: Ident,
+    /// Data name.
+    pub name: Ident,
+    /// Array dimensions (`{n}`, `{n,m}`, `{n,m,k}`), empty for a scalar.
+    pub dims: Vec<Expr>,
+    /// Initial value.
+    pub init: Option<Expr>,
+    /// The whole declaration including `;`.
+    pub span: Span,
+}
+
+/// Routine kinds.
+#[derive(Debug, Clone)]
+pub enum RoutineKind {
+    /// `PROC`
+    Proc,
+    /// `FUNC type`
+    Func(Ident),
+    /// `TRAP`
+    Trap,
+}
+
+/// `PROC`, `FUNC` or `TRAP` with its data, statements and handlers.
+#[derive(Debug, Clone)]
+pub struct Routine {
+    /// `LOCAL` was given.
+    pub local: bool,
+    /// Proc, func (with return type) or trap.
+    pub kind: RoutineKind,
+    /// Routine name.
+    pub name: Ident,
+    /// Parameters; each entry is one parameter or a group of mutually exclusive optional
+    /// alternatives (`\switch On | switch Off`).
+    pub params: Vec<ParamGroup>,
+    /// Routine data declarations (VAR/CONST, before the statements).
+    pub data: Vec<DataDecl>,
+    /// Statements.
+    pub body: Vec<Stmt>,
+    /// `BACKWARD` section (parsed, never executed).
+    pub backward: Option<Vec<Stmt>>,
+    /// `ERROR [(errnos)]` section.
+    pub error: Option<ErrorHandler>,
+    /// `UNDO` section.
+    pub undo: Option<Vec<Stmt>>,
+    /// From the first keyword to the end keyword.
+    pub span: Span,
+    /// The header (`PROC name(...)`) only, for diagnostics.
+    pub head_span: Span,
+}
+
+/// `ERROR [(n1, n2, …)]` handler.
+#[derive(Debug, Clone)]
+pub struct ErrorHandler {
+    /// The error numbers it takes; `None` takes every error.
+    pub errnos: Option<Vec<Expr>>,
+    /// Handler statements.
+    pub body: Vec<Stmt>,
+    /// The `ERROR` keyword and list.
+    pub span: Span,
+}
+
+/// One parameter, or several mutually exclusive optional alternatives.
+#[derive(Debug, Clone)]
+pub struct ParamGroup {
+    /// One entry for a plain parameter; two or more for `\a | b | c`.
+    pub alternatives: Vec<Param>,
+    /// The whole group.
+    pub span: Span,
+}
+
+/// Parameter access modes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamMode {
+    /// No keyword: a local copy.
+    In,
+    /// `INOUT`
+    InOut,
+    /// `VAR`
+    Var,
+    /// `PERS`
+    Pers,
+}
+
+/// `[\][mode] type name [{*[,*[,*]]}]`.
+#[derive(Debug, Clone)]
+pub struct Param {
+    /// Declared with a leading `\` (or inside an alternatives group).
+    pub optional: bool,
+    /// Access mode.
+    pub mode: ParamMode,
+    /// Type name (`switch` for switches).
+    pub ty: Ident,
+    /// Parameter name.
+    pub name: Ident,
+    /// Number of open-array dimensions (`{*}` = 1, `{*,*}` = 2, …), 0 for a scalar.
+    pub open_dims: u8,
+    /// The parameter, or a `<PAR>`/`<ALT>` placeholder standing for one.
+    pub placeholder: Option<Placeholder>,
+    /// Its text.
+    pub span: Span,
+}
+
+/// A statement.
+#[derive(Debug, Clone)]
+pub struct Stmt {
+    /// What it is.
+    pub kind: StmtKind,
+    /// From its first token to its `;` or end keyword.
+    pub span: Span,
+}
+
+/// Statement shapes.
+#[derive(Debug, Clone)]
+pub enum StmtKind {
+    /// `target := value;` (target: name, element or component chain).
+    Assign {
+        /// Assigned place.
+        target: Expr,
+        /// New value.
+        value: Expr,
+    },
+    /// `Name arg, …;` — procedure call (instructions included).
+    Call {
+        /// Procedure name.
+        name: Ident,
+        /// Arguments in written order.
+        args: Vec<Arg>,
+    },
+    /// `% expr % arg, …;` — late-bound procedure call.
+    LateCall {
+        /// Expression giving the procedure name.
+        name: Expr,
+        /// Arguments.
+        args: Vec<Arg>,
+    },
+    /// `IF … THEN … ELSEIF … ELSE … ENDIF`.
+    If {
+        /// Condition.
+        cond: Expr,
+        /// THEN part.
+        then_body: Vec<Stmt>,
+        /// ELSEIF parts in order.
+        elseifs: Vec<(Expr, Vec<Stmt>)>,
+        /// ELSE part.
+        else_body: Option<Vec<Stmt>>,
+    },
+    /// Compact `IF cond stmt;`.
+    CompactIf {
+        /// Condition.
+        cond: Expr,
+        /// The single simple statement.
+        stmt: Box<Stmt>,
+    },
+    /// `WHILE cond DO … ENDWHILE`.
+    While {
+        /// Condition.
+        cond: Expr,
+        /// Body.
+        body: Vec<Stmt>,
+    },
+    /// `FOR var FROM a TO b [STEP s] DO … ENDFOR`.
+    For {
+        /// Loop variable (implicitly declared num).
+        var: Ident,
+        /// Start.
+        from: Expr,
+        /// End.
+        to: Expr,
+        /// Step.
+        step: Option<Expr>,
+        /// Body.
+        body: Vec<Stmt>,
+    },
+    /// `TEST e CASE …: … DEFAULT: … ENDTEST`.
+    Test {
+        /// The tested value.
+        subject: Expr,
+        /// CASE clauses in order.
+        cases: Vec<TestCase>,
+        /// DEFAULT clause.
+        default: Option<Vec<Stmt>>,
+    },
+    /// `name:` label.
+    Label(Ident),
+    /// `GOTO name;`
+    Goto(Ident),
+    /// `RETURN [expr];`
+    Return(Option<Expr>),
+    /// `RAISE [expr];`
+    Raise(Option<Expr>),
+    /// `RETRY;`
+    Retry,
+    /// `TRYNEXT;`
+    TryNext,
+    /// `EXIT;`
+    Exit,
+    /// `CONNECT target WITH trap;`
+    Connect {
+        /// The interrupt variable.
+        target: Expr,
+        /// The trap routine.
+        trap: Ident,
+    },
+    /// A placeholder such as `<SMT>` standing for a statement.
+    Placeholder(Placeholder),
+}
+
+/// One `CASE v1, v2: body`.
+#[derive(Debug, Clone)]
+pub struct TestCase {
+    /// Values compared with `=`.
+    pub values: Vec<Expr>,
+    /// Statements.
+    pub body: Vec<Stmt>,
+    /// The `CASE …:` head.
+    pub span: Span,
+}
+
+/// An argument in a procedure or function call.
+#[derive(Debug, Clone)]
+pub struct Arg {
+    /// What form it has.
+    pub kind: ArgKind,
+    /// Its text (including a leading `\`).
+    pub span: Span,
+}
+
+/// Argument forms.
+#[derive(Debug, Clone)]
+pub enum ArgKind {
+    /// `expr` — positional required argument.
+    Positional(Expr),
+    /// `name := expr` — named required argument.
+    Named {
+        /// Parameter name.
+        name: Ident,
+        /// Value.
+        value: Expr,
+    },
+    /// `\name` (switch, or the same-named object) or `\name := expr`.
+    Optional {
+        /// Parameter name.
+        name: Ident,
+        /// Value, if written.
+        value: Option<Expr>,
+    },
+    /// `\name ? param` — passed only when the caller's optional `param` is present.
+    Conditional {
+        /// Parameter name of the callee.
+        name: Ident,
+        /// Caller's optional parameter.
+        param: Ident,
+    },
+    /// `<ARG>` placeholder.
+    Placeholder(Placeholder),
+}
+
+/// An expression.
+#[derive(Debug, Clone)]
+pub struct Expr {
+    /// What it is.
+    pub kind: ExprKind,
+    /// Its text.
+    pub span: Span,
+}
+
+/// Expression shapes.
+#[derive(Debug, Clone)]
+pub enum ExprKind {
+    /// Numeric literal (value as parsed in f64; the interpreter rounds `num` to f32).
+    Num(f64),
+    /// String literal, escapes decoded (`""` → `"`, `\\` → `\`, `\hh` → byte hh as a char).
+    Str(String),
+    /// `TRUE` / `FALSE`.
+    Bool(bool),
+    /// A data name.
+    Name(Ident),
+    /// `base.field`.
+    Component {
+        /// Record value.
+        base: Box<Expr>,
+        /// Component name.
+        field: Ident,
+    },
+    /// `base{i[,j[,k]]}`.
+    Index {
+        /// Array value.
+        base: Box<Expr>,
+        /// Indices (1-based).
+        indices: Vec<Expr>,
+    },
+    /// `F(args)` — function call.
+    Call {
+        /// Function name.
+        name: Ident,
+        /// Arguments.
+        args: Vec<Arg>,
+    },
+    /// `[e1, e2, …]` — record or array aggregate, typed from context.
+    Aggregate(Vec<Expr>),
+    /// Prefix operator.
+    Unary {
+        /// Operator.
+        op: UnaryOp,
+        /// Operand.
+        expr: Box<Expr>,
+    },
+    /// Infix operator.
+    Binary {
+        /// Operator.
+        op: BinOp,
+        /// Left operand.
+        lhs: Box<Expr>,
+        /// Right operand.
+        rhs: Box<Expr>,
+    },
+    /// `( e )` — kept so printing and diagnostics can show the parentheses.
+    Paren(Box<Expr>),
+    /// A placeholder such as `<EXP>` or `<VAR>`.
+    Placeholder(Placeholder),
+}
+
+/// Prefix operators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnaryOp {
+    /// `-e`
+    Neg,
+    /// `+e`
+    Plus,
+    /// `NOT e`
+    Not,
+}
+
+/// Infix operators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `DIV`
+    IntDiv,
+    /// `MOD`
+    Mod,
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `=`
+    Eq,
+    /// `>=`
+    Ge,
+    /// `>`
+    Gt,
+    /// `<>`
+    Ne,
+    /// `AND`
+    And,
+    /// `OR`
+    Or,
+    /// `XOR`
+    Xor,
+}
+
+impl BinOp {
+    /// The operator as written in RAPID.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::IntDiv => "DIV",
+            BinOp::Mod => "MOD",
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Lt => "<",
+            BinOp::Le => "<=",
+            BinOp::Eq => "=",
+            BinOp::Ge => ">=",
+            BinOp::Gt => ">",
+            BinOp::Ne => "<>",
+            BinOp::And => "AND",
+            BinOp::Or => "OR",
+            BinOp::Xor => "XOR",
+        }
+    }
+}
+
+/// RAPID placeholders for incomplete programs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Placeholder {
+    /// `<TDN>` type definition
+    Tdn,
+    /// `<DDN>` data declaration
+    Ddn,
+    /// `<RDN>` routine declaration
+    Rdn,
+    /// `<PAR>` parameter
+    Par,
+    /// `<ALT>` alternative parameter
+    Alt,
+    /// `<DIM>` array dimension
+    Dim,
+    /// `<SMT>` statement
+    Smt,
+    /// `<VAR>` data object reference
+    Var,
+    /// `<EIT>` ELSEIF clause
+    Eit,
+    /// `<CSE>` CASE clause
+    Cse,
+    /// `<EXP>` expression
+    Exp,
+    /// `<ARG>` argument
+    Arg,
+    /// `<ID>` identifier
+    Id,
+}
+
+impl Placeholder {
+    /// As written, e.g. `<SMT>`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Placeholder::Tdn => "<TDN>",
+            Placeholder::Ddn => "<DDN>",
+            Placeholder::Rdn => "<RDN>",
+            Placeholder::Par => "<PAR>",
+            Placeholder::Alt => "<ALT>",
+            Placeholder::Dim => "<DIM>",
+            Placeholder::Smt => "<SMT>",
+            Placeholder::Var => "<VAR>",
+            Placeholder::Eit => "<EIT>",
+            Placeholder::Cse => "<CSE>",
+            Placeholder::Exp => "<EXP>",
+            Placeholder::Arg => "<ARG>",
+            Placeholder::Id => "<ID>",
+        }
+    }
+}

@@ -1,0 +1,31 @@
+//! Command-line interface: clap definitions (one file per subcommand under `cli/`), choice of
+//! diagnostic renderer, exit codes. The only module that prints, reads arguments or exits.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod check;
+
+/// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
+#[derive(Debug, Parser)]
+#[command(name = "rapidvc", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Check RAPID files or directories for syntax and semantic errors.
+    Check(check::CheckArgs),
+}
+
+/// Run the parsed command line and return the process exit code.
+pub fn run(cli: Cli) -> ExitCode {
+    match cli.command {
+        Command::Check(args) => check::run(args),
+    }
+}

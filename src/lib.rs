@@ -1,0 +1,18 @@
+//! rapidvc — an open, headless virtual ABB robot controller.
+//!
+//! It parses and runs RAPID programs against a kinematic virtual 6-axis robot and implements
+//! ABB's Externally Guided Motion (EGM) over the real wire protocol (protobuf over UDP).
+//!
+//! Phases and layers (see `../shared/reference/architecture.md`):
+//! `source` → `parse` (pest, AST with spans) → `sema` (names, types, IR) → `interp`
+//! (tree-walking evaluation) → `controller` (composition root, the motion thread) over
+//! `motion` (sans-IO motion core), `robot` (kinematics, pure math) and `egm` (wire protocol).
+//! Only `cli` prints, reads the environment or exits.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod ast;
+#[cfg(feature = "cli")]
+pub mod cli;
+pub mod diag;
+pub mod source;
