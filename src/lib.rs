@@ -15,4 +15,7 @@ pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod diag;
+pub mod interp;
+pub mod ir;
+pub mod sema;
 pub mod source;

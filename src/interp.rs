@@ -1,0 +1,373 @@
+//! The tree-walking interpreter over [`crate::ir`]: values, frames, places, statements,
+//! error recovery, interrupts and natives. It owns neither time nor I/O: everything outside
+//! goes through a [`Host`].
+//!
+//! Semantics decisions (pinned by tests under `tests/run` and `tests/rapid`):
+//! * `num` is `f32`; literals are rounded to `f32` when lowered, so `x := 9E9; x = 9E9` holds.
+//! * `AND`/`OR`/`XOR` evaluate both operands (no short circuit).
+//! * `DIV` and `MOD` need integer operands (`ERR_NOTINTVAL`) and truncate toward zero; the
+//!   sign of `MOD` follows the dividend (`-7 MOD 2 = -1`).
+//! * `FOR` evaluates its bounds and step once; the default step is 1, or −1 when the start
+//!   is greater than the end.
+//! * An `ERROR` handler that ends without `RETRY`/`TRYNEXT`/`RETURN`/`RAISE` returns from
+//!   the routine (a FUNC then raises `ERR_FNCNORET` in its caller).
+//! * More than [`Interp::set_retry_limit`] consecutive `RETRY`s of one statement raise
+//!   `ERR_EXCRTYMAX` in the caller.
+//! * A run-time error inside an `ERROR` handler, or out of a TRAP, is fatal.
+
+pub mod builtins;
+mod call;
+pub mod error;
+pub mod errnum;
+mod expr;
+pub mod host;
+mod interrupts;
+pub mod pers;
+mod place;
+mod stmt;
+pub mod value;
+
+use std::sync::Arc;
+
+use crate::ir::{GlobalOrigin, Program, RoutineId, RoutineKind, Storage};
+use crate::source::Span;
+pub use builtins::{NativeFn, Registry};
+pub use error::{ErrorKind, RuntimeError, StackEntry, Unwind};
+pub use host::{Host, HostError, Output, VirtualHost};
+use interrupts::Interrupts;
+use place::AbsPlace;
+pub use value::Value;
+
+/// How a run ended without an error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// The entry routine returned.
+    Completed,
+    /// `EXIT` was executed.
+    Exited,
+    /// `ExitCycle` was executed.
+    ExitCycle,
+    /// `Stop` was executed.
+    Stopped,
+}
+
+/// What the before-statement hook wants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HookAction {
+    /// Go on.
+    Continue,
+    /// Abort execution (reported as an `Aborted` run-time error).
+    Abort,
+}
+
+/// What the before-statement hook sees.
+#[derive(Clone, Copy, Debug)]
+pub struct StmtEvent<'a> {
+    /// The statement about to run.
+    pub span: Span,
+    /// Name of the routine it is in.
+    pub routine: &'a str,
+    /// Call depth (1 for the entry routine).
+    pub depth: usize,
+    /// Statements executed so far.
+    pub steps: u64,
+}
+
+/// A before-statement hook (stepping, tracing, tests).
+pub type StmtHook = Box<dyn FnMut(&StmtEvent<'_>) -> HookAction + Send>;
+
+/// One activation record.
+#[derive(Debug)]
+struct Frame {
+    routine: RoutineId,
+    /// First value slot.
+    bp: usize,
+    /// First reference slot.
+    rbp: usize,
+    /// The statement currently executing (for stack traces).
+    at: Span,
+    /// Inside its ERROR handler: the error being handled.
+    handling: Option<Box<RuntimeError>>,
+}
+
+/// An argument of a native call.
+#[derive(Debug, Clone)]
+enum NArg {
+    Absent,
+    Val(Value),
+    Ref(AbsPlace),
+    Switch,
+}
+
+/// A RAPID program being executed.
+pub struct Interp {
+    prog: Arc<Program>,
+    natives: Arc<[NativeFn]>,
+    host: Box<dyn Host>,
+    globals: Vec<Value>,
+    stack: Vec<Value>,
+    refs: Vec<AbsPlace>,
+    frames: Vec<Frame>,
+    idx: Vec<i64>,
+    nargs: Vec<NArg>,
+    errno: i32,
+    intno: i32,
+    next_booked: i32,
+    retry_limit: u32,
+    ints: Interrupts,
+    steps: u64,
+    next_poll: u64,
+    budget: Option<u64>,
+    hook: Option<StmtHook>,
+    /// Set when the host (a test, a debugger) asked for a stop.
+    initialised: bool,
+}
+
+impl std::fmt::Debug for Interp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Interp")
+            .field("steps", &self.steps)
+            .field("frames", &self.frames.len())
+            .finish()
+    }
+}
+
+impl Interp {
+    /// An interpreter for `prog`, which must have been checked against `registry`.
+    pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
+        let natives = registry.impls_for(&prog.natives);
+        Interp {
+            prog,
+            natives,
+            host,
+            globals: Vec::new(),
+            stack: Vec::with_capacity(1024),
+            refs: Vec::with_capacity(64),
+            frames: Vec::with_capacity(64),
+            idx: Vec::with_capacity(16),
+            nargs: Vec::with_capacity(32),
+            errno: 0,
+            intno: 0,
+            next_booked: errnum::BOOK_FIRST,
+            retry_limit: 4,
+            ints: Interrupts::default(),
+            steps: 0,
+            next_poll: u64::MAX,
+            budget: None,
+            hook: None,
+            initialised: false,
+        }
+    }
+
+    /// The program.
+    pub fn program(&self) -> &Arc<Program> {
+        &self.prog
+    }
+
+    /// The host.
+    pub fn host(&self) -> &dyn Host {
+        self.host.as_ref()
+    }
+
+    /// The host, mutably.
+    pub fn host_mut(&mut self) -> &mut dyn Host {
+        self.host.as_mut()
+    }
+
+    /// Take the host back (after a run).
+    pub fn into_host(self) -> Box<dyn Host> {
+        self.host
+    }
+
+    /// Limit the number of statements executed (an operation budget); `None` = unlimited.
+    pub fn set_budget(&mut self, max_statements: Option<u64>) {
+        self.budget = max_statements;
+        self.update_poll();
+    }
+
+    /// Install a hook called before every statement.
+    pub fn set_hook(&mut self, hook: Option<StmtHook>) {
+        self.hook = hook;
+        self.update_poll();
+    }
+
+    /// How many consecutive `RETRY`s of one statement are allowed (default 4).
+    pub fn set_retry_limit(&mut self, n: u32) {
+        self.retry_limit = n;
+    }
+
+    /// Statements executed so far.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Initialise module data (VAR, CONST, and PERS without a stored value), in dependency
+    /// order. Called by [`Interp::run`] when needed; call it first to override persistents.
+    pub fn init(&mut self) -> Result<(), Box<RuntimeError>> {
+        let prog = self.prog.clone();
+        self.globals = prog
+            .globals
+            .iter()
+            .map(|g| value::default_value(&prog.types, g.ty, &g.dims))
+            .collect();
+        for (i, g) in prog.globals.iter().enumerate() {
+            match &g.origin {
+                GlobalOrigin::ErrConst(n) => self.globals[i] = Value::Num(*n as f32),
+                GlobalOrigin::NumConst(x) => self.globals[i] = Value::Num(*x as f32),
+                GlobalOrigin::Signal(name) | GlobalOrigin::MecUnit(name) => {
+                    self.globals[i] = Value::Record(Box::new([Value::str(name)]));
+                }
+                GlobalOrigin::Module(_) => {}
+            }
+        }
+        for &gid in &prog.init_order {
+            let g = &prog.globals[gid.0 as usize];
+            if let Some(init) = &g.init {
+                let v = match self.eval(&prog, init) {
+                    Ok(v) => v,
+                    Err(u) => return Err(self.unwind_to_error(u)),
+                };
+                self.globals[gid.0 as usize] = v;
+            }
+        }
+        self.initialised = true;
+        Ok(())
+    }
+
+    /// Run a procedure without arguments (usually `main`) to its end.
+    pub fn run(&mut self, entry: &str) -> Result<Outcome, Box<RuntimeError>> {
+        if !self.initialised {
+            self.init()?;
+        }
+        let prog = self.prog.clone();
+        let Some(rid) = prog.find_proc(entry) else {
+            return Err(Box::new(RuntimeError {
+                kind: ErrorKind::Rapid(errnum::ERR_REFUNKPRC),
+                message: format!("there is no procedure `{entry}` to start"),
+                span: Span::default(),
+                stack: Vec::new(),
+            }));
+        };
+        let r = prog.routine(rid);
+        if r.kind != RoutineKind::Proc || r.params.iter().any(|p| !p.optional) {
+            return Err(Box::new(RuntimeError {
+                kind: ErrorKind::Rapid(errnum::ERR_CALLPROC),
+                message: format!("`{}` is not a procedure without parameters", r.name),
+                span: r.head_span,
+                stack: Vec::new(),
+            }));
+        }
+        let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
+        let res = self.call_routine(&prog, rid, &args, r.head_span);
+        self.frames.clear();
+        self.stack.clear();
+        self.refs.clear();
+        match res {
+            Ok(_) => Ok(Outcome::Completed),
+            Err(Unwind::Exit) => Ok(Outcome::Exited),
+            Err(Unwind::ExitCycle) => Ok(Outcome::ExitCycle),
+            Err(Unwind::Stop) => Ok(Outcome::Stopped),
+            Err(u) => Err(self.unwind_to_error(u)),
+        }
+    }
+
+    /// Turn an unexpected unwind at the top level into an error.
+    fn unwind_to_error(&self, u: Unwind) -> Box<RuntimeError> {
+        match u {
+            Unwind::Error(e) | Unwind::Propagate(e) | Unwind::Fatal(e) => e,
+            other => Box::new(RuntimeError {
+                kind: ErrorKind::Aborted,
+                message: format!("unexpected {other:?} at the top level"),
+                span: Span::default(),
+                stack: Vec::new(),
+            }),
+        }
+    }
+
+    /// Current values of all persistents: (name, type name, value).
+    pub fn persistents(&self) -> Vec<(String, String, Value)> {
+        self.prog
+            .globals
+            .iter()
+            .enumerate()
+            .filter(|(_, g)| g.storage == Storage::Pers)
+            .filter_map(|(i, g)| {
+                Some((
+                    g.name.clone(),
+                    self.prog.types.display(g.ty),
+                    self.globals.get(i)?.clone(),
+                ))
+            })
+            .collect()
+    }
+
+    /// Set a persistent by (case-insensitive) name; false when there is none or the value
+    /// does not fit its type.
+    pub fn set_persistent(&mut self, name: &str, v: Value) -> bool {
+        let Some(i) = self.prog.globals.iter().position(|g| {
+            g.storage == Storage::Pers && g.name.eq_ignore_ascii_case(name)
+        }) else {
+            return false;
+        };
+        let Some(slot) = self.globals.get_mut(i) else {
+            return false;
+        };
+        if !pers::same_shape(slot, &v) {
+            return false;
+        }
+        *slot = v;
+        true
+    }
+
+    /// Recompute when the per-statement slow path must run.
+    fn update_poll(&mut self) {
+        let every = self.hook.is_some() || self.ints.armed();
+        self.next_poll = if every {
+            self.steps + 1
+        } else {
+            match self.budget {
+                Some(b) => b.max(self.steps + 1),
+                None => u64::MAX,
+            }
+        };
+    }
+
+    /// Build a RAPID error at `span` with the current call stack.
+    fn error(&self, errno: i32, span: Span, message: impl Into<String>) -> Unwind {
+        Unwind::Error(self.make_error(ErrorKind::Rapid(errno), span, message))
+    }
+
+    /// Build a fatal error at `span` with the current call stack.
+    fn fatal(&self, kind: ErrorKind, span: Span, message: impl Into<String>) -> Unwind {
+        Unwind::Fatal(self.make_error(kind, span, message))
+    }
+
+    fn make_error(
+        &self,
+        kind: ErrorKind,
+        span: Span,
+        message: impl Into<String>,
+    ) -> Box<RuntimeError> {
+        let mut stack = Vec::with_capacity(self.frames.len());
+        for (k, f) in self.frames.iter().enumerate().rev() {
+            let at = if k + 1 == self.frames.len() { span } else { f.at };
+            stack.push(StackEntry {
+                routine: self.prog.routine(f.routine).name.clone(),
+                span: at,
+            });
+        }
+        Box::new(RuntimeError {
+            kind,
+            message: message.into(),
+            span,
+            stack,
+        })
+    }
+
+    fn host_error(&self, e: HostError, span: Span) -> Unwind {
+        match e.errno {
+            Some(n) => self.error(n, span, e.message),
+            None => self.fatal(ErrorKind::Host, span, e.message),
+        }
+    }
+}

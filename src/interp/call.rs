@@ -1,0 +1,347 @@
+//! Calls: argument passing (values, references, switches, conditional arguments), frames,
+//! routine data initialisation, returns and UNDO, natives, and late binding.
+
+use super::builtins::Ctx;
+use super::errnum;
+use super::error::{ErrorKind, Exec, Unwind};
+use super::place::AbsPlace;
+use super::value::{default_value, Value};
+use super::{Frame, Interp, NArg};
+use crate::ir::{Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId, RoutineKind};
+use crate::source::Span;
+
+/// Deepest call nesting before execution is aborted (a runaway recursion guard).
+pub(crate) const MAX_DEPTH: usize = 2000;
+
+impl Interp {
+    /// Call a user routine with lowered arguments; returns the FUNC result (or `Absent`).
+    pub(crate) fn call_routine(
+        &mut self,
+        p: &Program,
+        rid: RoutineId,
+        args: &[Arg],
+        span: Span,
+    ) -> Exec<Value> {
+        let r = p.routine(rid);
+        if self.frames.len() >= MAX_DEPTH {
+            return Err(self.fatal(
+                ErrorKind::Aborted,
+                span,
+                format!("calls nested deeper than {MAX_DEPTH} levels (runaway recursion?)"),
+            ));
+        }
+        let bp = self.stack.len();
+        let rbp = self.refs.len();
+        if let Err(u) = self.push_args(p, r, args) {
+            self.stack.truncate(bp);
+            self.refs.truncate(rbp);
+            return Err(u);
+        }
+        if let Some(f) = self.frames.last_mut() {
+            f.at = span;
+        }
+        self.frames.push(Frame {
+            routine: rid,
+            bp,
+            rbp,
+            at: r.head_span,
+            handling: None,
+        });
+        let res = match self.init_locals(p, r, bp) {
+            Ok(()) => self.exec_block(p, &r.body),
+            Err(u) => Err(u),
+        };
+        let res = self.finish_call(p, r, res);
+        self.frames.pop();
+        self.stack.truncate(bp);
+        self.refs.truncate(rbp);
+        res
+    }
+
+    fn push_args(&mut self, p: &Program, r: &Routine, args: &[Arg]) -> Exec<()> {
+        for (param, arg) in r.params.iter().zip(args.iter()) {
+            match param.slot {
+                ParamSlot::Value(_) => {
+                    let v = self.arg_value(p, arg)?;
+                    self.stack.push(v);
+                }
+                ParamSlot::Ref(_) => {
+                    let a = self.arg_ref(p, arg)?;
+                    self.refs.push(a);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn arg_value(&mut self, p: &Program, arg: &Arg) -> Exec<Value> {
+        match arg {
+            Arg::Absent => Ok(Value::Absent),
+            Arg::Value(e) => self.eval(p, e),
+            Arg::Switch => Ok(Value::Bool(true)),
+            Arg::Ref(pl) => self.load(p, pl),
+            Arg::Cond { param, arg } => {
+                if self.param_present(*param) {
+                    self.arg_value(p, arg)
+                } else {
+                    Ok(Value::Absent)
+                }
+            }
+        }
+    }
+
+    fn arg_ref(&mut self, p: &Program, arg: &Arg) -> Exec<AbsPlace> {
+        match arg {
+            Arg::Absent => Ok(AbsPlace::absent()),
+            Arg::Ref(pl) => self.resolve(p, pl),
+            Arg::Cond { param, arg } => {
+                if self.param_present(*param) {
+                    self.arg_ref(p, arg)
+                } else {
+                    Ok(AbsPlace::absent())
+                }
+            }
+            _ => Err(self.fatal(
+                ErrorKind::Host,
+                Span::default(),
+                "internal error: a reference parameter got a value argument",
+            )),
+        }
+    }
+
+    fn init_locals(&mut self, p: &Program, r: &Routine, bp: usize) -> Exec<()> {
+        self.stack.resize(bp + r.n_slots as usize, Value::Num(0.0));
+        for l in &r.locals {
+            let v = match &l.init {
+                Some(e) => self.eval(p, e)?,
+                None => default_value(&p.types, l.ty, &l.dims),
+            };
+            if let Some(slot) = self.stack.get_mut(bp + l.slot as usize) {
+                *slot = v;
+            }
+        }
+        Ok(())
+    }
+
+    fn finish_call(&mut self, p: &Program, r: &Routine, res: Exec<()>) -> Exec<Value> {
+        let is_func = matches!(r.kind, RoutineKind::Func(_));
+        match res {
+            Ok(()) => {
+                if is_func {
+                    Err(self.fncnoret(r))
+                } else {
+                    Ok(Value::Absent)
+                }
+            }
+            Err(Unwind::Return(v)) => {
+                if is_func && !v.is_present() {
+                    Err(self.fncnoret(r))
+                } else {
+                    Ok(v)
+                }
+            }
+            Err(Unwind::Propagate(e)) | Err(Unwind::Error(e)) => {
+                self.run_undo(p, r)?;
+                Err(Unwind::Error(e))
+            }
+            Err(u @ (Unwind::Exit | Unwind::ExitCycle)) => {
+                self.run_undo(p, r)?;
+                Err(u)
+            }
+            Err(u @ (Unwind::Stop | Unwind::Fatal(_))) => Err(u),
+            Err(Unwind::Goto(_) | Unwind::Retry | Unwind::TryNext) => Err(self.fatal(
+                ErrorKind::Host,
+                r.span,
+                "internal error: a GOTO, RETRY or TRYNEXT escaped its routine",
+            )),
+        }
+    }
+
+    fn fncnoret(&self, r: &Routine) -> Unwind {
+        self.error(
+            errnum::ERR_FNCNORET,
+            r.span.end_point(),
+            format!("function `{}` ended without RETURN", r.name),
+        )
+    }
+
+    /// Run a routine's UNDO handler (when it is abandoned). Errors in it are fatal.
+    fn run_undo(&mut self, p: &Program, r: &Routine) -> Exec<()> {
+        let Some(undo) = &r.undo else {
+            return Ok(());
+        };
+        if let Some(f) = self.frames.last_mut() {
+            f.handling = None;
+        }
+        match self.exec_block(p, undo) {
+            Ok(()) | Err(Unwind::Return(_)) => Ok(()),
+            Err(Unwind::Error(e) | Unwind::Propagate(e) | Unwind::Fatal(e)) => {
+                Err(Unwind::Fatal(e))
+            }
+            Err(other) => Err(other),
+        }
+    }
+
+    /// Call a native routine.
+    pub(crate) fn call_native(
+        &mut self,
+        p: &Program,
+        nid: NativeId,
+        args: &[Arg],
+        span: Span,
+    ) -> Exec<Value> {
+        let base = self.nargs.len();
+        for arg in args.iter() {
+            match self.native_arg(p, arg) {
+                Ok(a) => self.nargs.push(a),
+                Err(u) => {
+                    self.nargs.truncate(base);
+                    return Err(u);
+                }
+            }
+        }
+        if let Some(f) = self.frames.last_mut() {
+            f.at = span;
+        }
+        let Some(&f) = self.natives.get(nid.0 as usize) else {
+            self.nargs.truncate(base);
+            return Err(self.fatal(ErrorKind::Host, span, "internal error: unknown native"));
+        };
+        let mut ctx = Ctx {
+            it: self,
+            p,
+            base,
+            span,
+            nid,
+            args,
+        };
+        let r = f(&mut ctx);
+        self.nargs.truncate(base);
+        r
+    }
+
+    fn native_arg(&mut self, p: &Program, arg: &Arg) -> Exec<NArg> {
+        Ok(match arg {
+            Arg::Absent => NArg::Absent,
+            Arg::Switch => NArg::Switch,
+            Arg::Value(e) => NArg::Val(self.eval(p, e)?),
+            Arg::Ref(pl) => NArg::Ref(self.resolve(p, pl)?),
+            Arg::Cond { param, arg } => {
+                if self.param_present(*param) {
+                    self.native_arg(p, arg)?
+                } else {
+                    NArg::Absent
+                }
+            }
+        })
+    }
+
+    /// `% name % args;`: find the procedure at run time and call it.
+    pub(crate) fn late_call(
+        &mut self,
+        p: &Program,
+        name: &str,
+        args: &[crate::ir::LateArg],
+        module: crate::ir::ModuleId,
+        span: Span,
+    ) -> Exec<()> {
+        let (modname, procname) = match name.split_once(':') {
+            Some((m, r)) => (Some(m.trim()), r.trim()),
+            None => (None, name.trim()),
+        };
+        let found = p
+            .procs_by_name
+            .get(&procname.to_ascii_uppercase())
+            .and_then(|list| {
+                list.iter().copied().find(|&rid| {
+                    let r = p.routine(rid);
+                    let mname = &p.modules[r.module.0 as usize].name;
+                    let module_ok = match modname {
+                        Some(m) => mname.eq_ignore_ascii_case(m),
+                        None => !r.local || r.module == module,
+                    };
+                    module_ok && r.kind == RoutineKind::Proc
+                })
+            });
+        let Some(rid) = found else {
+            return Err(self.error(
+                errnum::ERR_REFUNKPRC,
+                span,
+                format!("there is no procedure `{name}`"),
+            ));
+        };
+        let r = p.routine(rid);
+        let mut lowered: Vec<Arg> = vec![Arg::Absent; r.params.len()];
+        let mut next_req = 0usize;
+        for a in args {
+            let idx = match &a.name {
+                Some(n) => r.params.iter().position(|q| q.name.eq_ignore_ascii_case(n)),
+                None => {
+                    let i = r.params.iter().enumerate().skip(next_req).find(|(_, q)| !q.optional).map(|(i, _)| i);
+                    if let Some(i) = i {
+                        next_req = i + 1;
+                    }
+                    i
+                }
+            };
+            let Some(i) = idx else {
+                return Err(self.error(
+                    errnum::ERR_CALLPROC,
+                    a.span,
+                    format!("`{}` has no parameter for this argument", r.name),
+                ));
+            };
+            let q = &r.params[i];
+            lowered[i] = if q.ty.base == crate::ir::TypeId::SWITCH {
+                Arg::Switch
+            } else if q.mode == ParamMode::In {
+                match &a.value {
+                    Some(e) => Arg::Value(e.clone()),
+                    None => Arg::Switch,
+                }
+            } else {
+                match &a.place {
+                    Some(pl) => Arg::Ref(pl.clone()),
+                    None => {
+                        return Err(self.error(
+                            errnum::ERR_ARGNOTVAR,
+                            a.span,
+                            format!("parameter `{}` of `{}` needs a variable", q.name, r.name),
+                        ));
+                    }
+                }
+            };
+        }
+        if let Some(q) = r
+            .params
+            .iter()
+            .zip(&lowered)
+            .find(|(q, a)| !q.optional && matches!(a, Arg::Absent))
+        {
+            return Err(self.error(
+                errnum::ERR_CALLPROC,
+                span,
+                format!("argument for `{}` of `{}` is missing", q.0.name, r.name),
+            ));
+        }
+        // Check value arguments against the parameter types before the call.
+        for (q, a) in r.params.iter().zip(&lowered) {
+            if let Arg::Value(e) = a {
+                let v = self.eval(p, e)?;
+                if !super::pers::fits(&p.types, q.ty, &v) {
+                    return Err(self.error(
+                        errnum::ERR_CALLPROC,
+                        e.span,
+                        format!(
+                            "argument for `{}` of `{}` must be {}",
+                            q.name,
+                            r.name,
+                            p.types.display(q.ty)
+                        ),
+                    ));
+                }
+            }
+        }
+        self.call_routine(p, rid, &lowered, span).map(|_| ())
+    }
+}

@@ -1,0 +1,144 @@
+//! RAPID error numbers: the predefined `ERR_*` constants and rapidvc's numbering scheme.
+//!
+//! ABB does not publish the numeric values of the `ERR_*` constants (programs compare
+//! `ERRNO` with the names), so rapidvc fixes its own stable scheme:
+//!
+//! | range | use |
+//! |---|---|
+//! | 1–90 | user error numbers (`RAISE 12;`) |
+//! | 500–999 | numbers handed out by `BookErrNo`, in booking order from 500 |
+//! | 1001–1099 | arithmetic and data (`ERR_DIVZERO` = 1001, …) |
+//! | 1101–1199 | routines and control (`ERR_NOTPRES`, `ERR_EXCRTYMAX`, `ERR_REFUNKPRC`, …) |
+//! | 1201–1299 | interrupts |
+//! | 1301–1399 | waiting and the teach pendant (`ERR_WAIT_MAXTIME`, …) |
+//! | 1401–1499 | motion (`ERR_ROBLIMIT`, `ERR_OUTSIDE_REACH`, …) |
+//! | 1501–1599 | I/O signals |
+//! | 1601–1699 | sockets and files |
+//! | 1701–1799 | EGM (`ERR_UDPUC_COMM`) |
+//!
+//! Numbers never change once published; new constants take the next free number of their
+//! group.
+
+/// First number handed out by `BookErrNo`.
+pub const BOOK_FIRST: i32 = 500;
+/// Last number `BookErrNo` can hand out.
+pub const BOOK_LAST: i32 = 999;
+
+/// A predefined error constant.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ErrDef {
+    /// `ERR_…` name.
+    pub name: &'static str,
+    /// Its number.
+    pub num: i32,
+    /// Event-log text.
+    pub text: &'static str,
+}
+
+macro_rules! errs {
+    ($( $name:ident = $num:literal, $text:literal; )*) => {
+        /// Every predefined error constant, in numbering order.
+        pub const ERRORS: &[ErrDef] = &[ $( ErrDef { name: stringify!($name), num: $num, text: $text }, )* ];
+        $(
+            #[doc = $text]
+            #[allow(dead_code)]
+            pub const $name: i32 = $num;
+        )*
+    };
+}
+
+errs! {
+    ERR_DIVZERO = 1001, "Division by zero";
+    ERR_NOTINTVAL = 1002, "Not an integer value";
+    ERR_NUM_LIMIT = 1003, "Value outside the range of the data type";
+    ERR_ARGVALERR = 1004, "Argument value not allowed";
+    ERR_STRTOOLNG = 1005, "String too long (more than 80 characters)";
+    ERR_OUTOFBND = 1006, "Index outside the array bounds";
+    ERR_ILLQUAT = 1007, "Illegal orientation (not a valid quaternion)";
+    ERR_NOTARR = 1008, "Data is not an array";
+    ERR_NOTEQDIM = 1009, "Array dimensions do not match";
+    ERR_ILLDIM = 1010, "Illegal array dimension";
+    ERR_OVERFLOW = 1011, "Clock overflow";
+    ERR_MAXINTVAL = 1012, "Integer value too large";
+    ERR_INT_NOTVAL = 1013, "Not a valid integer";
+    ERR_INT_MAXVAL = 1014, "Integer value outside the allowed range";
+    ERR_NOTPRES = 1101, "Optional parameter not present";
+    ERR_FNCNORET = 1102, "Function ended without RETURN";
+    ERR_CALLPROC = 1103, "Procedure call error";
+    ERR_ILLRAISE = 1104, "Error number in RAISE out of range";
+    ERR_EXCRTYMAX = 1105, "Maximum number of retries exceeded";
+    ERR_REFUNKPRC = 1106, "Reference to unknown procedure";
+    ERR_REFUNKFUN = 1107, "Reference to unknown function";
+    ERR_REFUNKDAT = 1108, "Reference to unknown data";
+    ERR_REFUNKTRP = 1109, "Reference to unknown trap";
+    ERR_SYM_ACCESS = 1110, "Symbol access error";
+    ERR_ARGNAME = 1111, "Argument is not a valid name";
+    ERR_UNKPROC = 1112, "Unknown procedure";
+    ERR_ARGNOTVAR = 1113, "Argument is not a variable";
+    ERR_ARGNOTPER = 1114, "Argument is not a persistent";
+    ERR_ALRDYCNT = 1201, "Interrupt variable already connected";
+    ERR_CNTNOTVAR = 1202, "CONNECT target is not a variable";
+    ERR_INOMAX = 1203, "No more interrupt numbers available";
+    ERR_UNKINO = 1204, "Unknown interrupt number";
+    ERR_WAIT_MAXTIME = 1301, "Maximum waiting time exceeded";
+    ERR_TP_DOBREAK = 1302, "TP read interrupted by a digital output";
+    ERR_TP_DIBREAK = 1303, "TP read interrupted by a digital input";
+    ERR_TP_MAXTIME = 1304, "TP read timed out";
+    ERR_TP_NO_CLIENT = 1305, "No teach pendant client";
+    ERR_ROBLIMIT = 1401, "Robot position outside its limits";
+    ERR_OUTSIDE_REACH = 1402, "Position outside reach";
+    ERR_WHLSEARCH = 1403, "No search hit";
+    ERR_PATH_STOP = 1404, "Path stopped";
+    ERR_NO_ALIASIO_DEF = 1501, "Signal variable is not connected to a signal";
+    ERR_ALIASIO_DEF = 1502, "Signal is not defined";
+    ERR_ALIASIO_TYPE = 1503, "Signal has the wrong type";
+    ERR_NORUNUNIT = 1504, "No contact with the I/O device";
+    ERR_SIG_NOT_VALID = 1505, "Signal cannot be accessed";
+    ERR_SIG_NAME = 1506, "Signal name is not valid";
+    ERR_AO_LIM = 1507, "Analog output value outside its limits";
+    ERR_GO_LIM = 1508, "Group output value outside its limits";
+    ERR_SOCK_CLOSED = 1601, "Socket closed";
+    ERR_SOCK_TIMEOUT = 1602, "Socket time-out";
+    ERR_FILEOPEN = 1603, "File cannot be opened";
+    ERR_FILEACC = 1604, "File access error";
+    ERR_FILNOTFND = 1605, "File not found";
+    ERR_FILESIZE = 1606, "File too large";
+    ERR_RANYBIN_EOF = 1607, "End of file";
+    ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
+}
+
+/// The constant with this (case-insensitive) name.
+pub fn by_name(name: &str) -> Option<&'static ErrDef> {
+    ERRORS.iter().find(|e| e.name.eq_ignore_ascii_case(name))
+}
+
+/// The constant with this number.
+pub fn by_num(num: i32) -> Option<&'static ErrDef> {
+    ERRORS.iter().find(|e| e.num == num)
+}
+
+/// `ERR_NAME (number)` for a system error, `error number` for user and booked ones.
+pub fn describe(num: i32) -> String {
+    match by_num(num) {
+        Some(e) => format!("{} ({})", e.name, e.num),
+        None => format!("error {num}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_unique_and_outside_user_and_booking_ranges() {
+        let mut seen = std::collections::HashSet::new();
+        for e in ERRORS {
+            assert!(seen.insert(e.num), "duplicate {}", e.num);
+            assert!(e.num > BOOK_LAST, "{} collides", e.name);
+            assert!(e.name.starts_with("ERR_"));
+        }
+        assert_eq!(by_name("err_divzero").map(|e| e.num), Some(ERR_DIVZERO));
+        assert_eq!(describe(ERR_DIVZERO), "ERR_DIVZERO (1001)");
+        assert_eq!(describe(7), "error 7");
+    }
+}

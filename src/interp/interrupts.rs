@@ -1,0 +1,369 @@
+//! Interrupts: CONNECT, timer and signal orders, the pending queue, and running TRAPs
+//! between statements and during waits.
+
+use std::collections::{HashMap, HashSet, VecDeque};
+
+use super::errnum;
+use super::error::{Exec, Unwind};
+use super::value::Value;
+use super::Interp;
+use crate::ir::{Place, Program, RoutineId};
+use crate::source::Span;
+
+/// Most interrupt numbers in use at once.
+pub(crate) const MAX_INTERRUPTS: usize = 100;
+/// Most interrupts waiting to run.
+const MAX_PENDING: usize = 30;
+
+/// A timer order (`ITimer`).
+#[derive(Debug, Clone)]
+pub(crate) struct Timer {
+    pub intno: i32,
+    pub period: f64,
+    pub next: f64,
+    pub single: bool,
+}
+
+/// What a signal order waits for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Trigger {
+    /// Digital: 1 = rising edge, 0 = falling edge, 2 = both.
+    Edge(u8),
+    /// Analog: `aiotrigg` condition with high/low limits.
+    Analog { cond: u8, high: f64, low: f64 },
+}
+
+/// A signal order (`ISignalDI`, `ISignalDO`, `ISignalAO`).
+#[derive(Debug, Clone)]
+pub(crate) struct Watch {
+    pub intno: i32,
+    pub signal: String,
+    pub trigger: Trigger,
+    pub last: f64,
+    pub single: bool,
+}
+
+/// Interrupt state of a task.
+#[derive(Debug, Default)]
+pub(crate) struct Interrupts {
+    next_no: i32,
+    connected: HashMap<i32, RoutineId>,
+    pub timers: Vec<Timer>,
+    pub watches: Vec<Watch>,
+    pending: VecDeque<i32>,
+    /// IDisable in effect.
+    pub disabled: bool,
+    /// ISleep'd interrupt numbers.
+    pub asleep: HashSet<i32>,
+    in_trap: bool,
+    /// Signal writes due later (`\SDelay`, the end of a `PulseDO`): (time, signal, value).
+    delayed: Vec<(f64, String, f64)>,
+}
+
+impl Interrupts {
+    /// Anything that needs checking between statements?
+    pub fn armed(&self) -> bool {
+        !self.timers.is_empty()
+            || !self.watches.is_empty()
+            || !self.pending.is_empty()
+            || !self.delayed.is_empty()
+    }
+
+    /// Is this interrupt number connected?
+    pub fn is_connected(&self, no: i32) -> bool {
+        self.connected.contains_key(&no)
+    }
+
+    /// Earliest timer deadline.
+    pub fn next_timer(&self) -> Option<f64> {
+        self.timers
+            .iter()
+            .map(|t| t.next)
+            .chain(self.delayed.iter().map(|d| d.0))
+            .reduce(f64::min)
+    }
+
+    /// Remove an interrupt number and all its orders.
+    pub fn delete(&mut self, no: i32) -> bool {
+        self.timers.retain(|t| t.intno != no);
+        self.watches.retain(|w| w.intno != no);
+        self.pending.retain(|&n| n != no);
+        self.asleep.remove(&no);
+        self.connected.remove(&no).is_some()
+    }
+
+    fn queue(&mut self, no: i32) -> bool {
+        if self.asleep.contains(&no) {
+            return true;
+        }
+        if self.pending.len() >= MAX_PENDING {
+            return false;
+        }
+        self.pending.push_back(no);
+        true
+    }
+}
+
+/// Does an analog value satisfy an `aiotrigg` condition?
+fn analog_hit(cond: u8, high: f64, low: f64, v: f64) -> bool {
+    match cond {
+        1 => v > high,             // AIO_ABOVE_HIGH
+        2 => v < high,             // AIO_BELOW_HIGH
+        3 => v > low,              // AIO_ABOVE_LOW
+        4 => v < low,              // AIO_BELOW_LOW
+        5 => v >= low && v <= high, // AIO_BETWEEN
+        6 => v < low || v > high,  // AIO_OUTSIDE
+        _ => true,                 // AIO_ALWAYS
+    }
+}
+
+impl Interp {
+    /// `CONNECT place WITH trap`.
+    pub(crate) fn connect(
+        &mut self,
+        p: &Program,
+        place: &Place,
+        trap: RoutineId,
+        span: Span,
+    ) -> Exec<()> {
+        let cur = self.load(p, place)?.as_num().unwrap_or(0.0) as i32;
+        if cur != 0 && self.ints.is_connected(cur) {
+            return Err(self.error(
+                errnum::ERR_ALRDYCNT,
+                span,
+                format!("the interrupt variable is already connected (interrupt {cur})"),
+            ));
+        }
+        if self.ints.connected.len() >= MAX_INTERRUPTS {
+            return Err(self.error(
+                errnum::ERR_INOMAX,
+                span,
+                format!("more than {MAX_INTERRUPTS} interrupts connected"),
+            ));
+        }
+        self.ints.next_no += 1;
+        let no = self.ints.next_no;
+        self.ints.connected.insert(no, trap);
+        self.store(p, place, Value::Num(no as f32))
+    }
+
+    /// Check an interrupt number given to an I-instruction.
+    pub(crate) fn check_intno(&self, no: i32, span: Span) -> Exec<()> {
+        if self.ints.is_connected(no) {
+            Ok(())
+        } else {
+            Err(self.error(
+                errnum::ERR_UNKINO,
+                span,
+                format!("interrupt {no} is not connected (use CONNECT first)"),
+            ))
+        }
+    }
+
+    /// Order a timer interrupt.
+    pub(crate) fn order_timer(&mut self, no: i32, period: f64, single: bool, span: Span) -> Exec<()> {
+        self.check_intno(no, span)?;
+        let now = self.host.now();
+        self.ints.timers.retain(|t| t.intno != no);
+        self.ints.timers.push(Timer {
+            intno: no,
+            period,
+            next: now + period,
+            single,
+        });
+        self.update_poll();
+        Ok(())
+    }
+
+    /// Order a signal interrupt.
+    pub(crate) fn order_watch(
+        &mut self,
+        no: i32,
+        signal: &str,
+        trigger: Trigger,
+        single: bool,
+        span: Span,
+    ) -> Exec<()> {
+        self.check_intno(no, span)?;
+        let last = self
+            .host
+            .read_signal(signal)
+            .map_err(|e| self.host_error(e, span))?;
+        self.ints.watches.retain(|w| w.intno != no);
+        self.ints.watches.push(Watch {
+            intno: no,
+            signal: signal.to_string(),
+            trigger,
+            last,
+            single,
+        });
+        self.update_poll();
+        Ok(())
+    }
+
+    /// Delete an interrupt (`IDelete`).
+    pub(crate) fn delete_interrupt(&mut self, no: i32) {
+        self.ints.delete(no);
+        self.update_poll();
+    }
+
+    /// Write a signal at a later (host) time.
+    pub(crate) fn schedule_write(&mut self, at: f64, signal: String, value: f64) {
+        self.ints.delayed.push((at, signal, value));
+        self.update_poll();
+    }
+
+    /// Move due timers and signal changes into the queue, then run queued traps (unless
+    /// disabled or already in a trap).
+    pub(crate) fn service_interrupts(&mut self, p: &Program, span: Span) -> Exec<()> {
+        let now = self.host.now();
+        if !self.ints.delayed.is_empty() {
+            let mut due: Vec<(f64, String, f64)> = Vec::new();
+            self.ints.delayed.retain(|d| {
+                if d.0 <= now {
+                    due.push(d.clone());
+                    false
+                } else {
+                    true
+                }
+            });
+            due.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for (_, sig, v) in due {
+                self.host
+                    .write_signal(&sig, v)
+                    .map_err(|e| self.host_error(e, span))?;
+            }
+        }
+        let mut fired: Vec<i32> = Vec::new();
+        self.ints.timers.retain_mut(|t| {
+            if t.next <= now {
+                fired.push(t.intno);
+                if t.single {
+                    return false;
+                }
+                t.next += t.period;
+                if t.next <= now {
+                    t.next = now + t.period;
+                }
+            }
+            true
+        });
+        if !self.ints.watches.is_empty() {
+            let mut watches = std::mem::take(&mut self.ints.watches);
+            let mut err = None;
+            watches.retain_mut(|w| {
+                let v = match self.host.read_signal(&w.signal) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        err = Some(e);
+                        return true;
+                    }
+                };
+                let hit = match w.trigger {
+                    Trigger::Edge(t) => {
+                        let rising = w.last < 0.5 && v >= 0.5;
+                        let falling = w.last >= 0.5 && v < 0.5;
+                        match t {
+                            1 => rising,
+                            0 => falling,
+                            _ => rising || falling,
+                        }
+                    }
+                    Trigger::Analog { cond, high, low } => {
+                        v != w.last
+                            && (cond == 7 || (analog_hit(cond, high, low, v)
+                                && !analog_hit(cond, high, low, w.last)))
+                    }
+                };
+                w.last = v;
+                if hit {
+                    fired.push(w.intno);
+                    return !w.single;
+                }
+                true
+            });
+            self.ints.watches = watches;
+            if let Some(e) = err {
+                return Err(self.host_error(e, span));
+            }
+        }
+        for no in fired {
+            if !self.ints.queue(no) {
+                self.host.output(super::Output::Event(format!(
+                    "interrupt queue full: interrupt {no} was lost"
+                )));
+            }
+        }
+        if !self.ints.in_trap && !self.ints.disabled {
+            while let Some(no) = self.ints.pending.pop_front() {
+                if let Some(&trap) = self.ints.connected.get(&no) {
+                    self.run_trap(p, trap, no, span)?;
+                }
+            }
+        }
+        self.update_poll();
+        Ok(())
+    }
+
+    fn run_trap(&mut self, p: &Program, trap: RoutineId, no: i32, span: Span) -> Exec<()> {
+        self.ints.in_trap = true;
+        let saved = self.intno;
+        self.intno = no;
+        let res = self.call_routine(p, trap, &[], span);
+        self.intno = saved;
+        self.ints.in_trap = false;
+        match res {
+            Ok(_) => Ok(()),
+            // An error that leaves a TRAP stops execution.
+            Err(Unwind::Error(e) | Unwind::Propagate(e)) => Err(Unwind::Fatal(e)),
+            Err(other) => Err(other),
+        }
+    }
+
+    /// Wait until `deadline` (absolute seconds) or until `cond` holds (polled every `poll`
+    /// seconds), running traps as interrupts arrive. Returns true when `cond` held.
+    pub(crate) fn wait(
+        &mut self,
+        p: &Program,
+        span: Span,
+        deadline: Option<f64>,
+        mut cond: Option<&mut dyn FnMut(&mut Interp, &Program) -> Exec<bool>>,
+        poll: f64,
+    ) -> Exec<bool> {
+        if let Some(f) = self.frames.last_mut() {
+            f.at = span;
+        }
+        loop {
+            if let Some(c) = cond.as_mut()
+                && c(self, p)?
+            {
+                return Ok(true);
+            }
+            let now = self.host.now();
+            if let Some(d) = deadline
+                && now >= d
+            {
+                self.service_interrupts(p, span)?;
+                return Ok(false);
+            }
+            let mut wake = deadline.unwrap_or(f64::INFINITY);
+            if cond.is_some() {
+                wake = wake.min(now + poll);
+            }
+            if let Some(t) = self.ints.next_timer() {
+                wake = wake.min(t.max(now));
+            }
+            if !wake.is_finite() {
+                return Err(self.fatal(
+                    super::ErrorKind::Host,
+                    span,
+                    "this wait can never end",
+                ));
+            }
+            self.host
+                .wait_until(wake)
+                .map_err(|e| self.host_error(e, span))?;
+            self.service_interrupts(p, span)?;
+        }
+    }
+}

@@ -1,0 +1,355 @@
+//! Places: where a value lives (a frame slot, a global, a path into a record or array), how
+//! reference parameters point at their argument, and reading/writing through them.
+
+use super::errnum;
+use super::error::Exec;
+use super::value::{Array, Value};
+use super::Interp;
+use crate::ir::{PathOp, Place, Program, Root};
+use crate::source::Span;
+
+/// Where a referenced object starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum AbsRoot {
+    /// Absolute index into the value stack.
+    Stack(u32),
+    /// A global.
+    Global(u32),
+    /// An optional reference parameter that was not passed.
+    Absent,
+}
+
+/// One resolved step: a record component or an array element (row-major offset).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Step {
+    Field(u16),
+    Elem(u32),
+}
+
+/// A fully resolved place, independent of the frame that computed it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct AbsPlace {
+    pub root: AbsRoot,
+    pub path: Vec<Step>,
+}
+
+impl AbsPlace {
+    pub fn absent() -> AbsPlace {
+        AbsPlace {
+            root: AbsRoot::Absent,
+            path: Vec::new(),
+        }
+    }
+    pub fn global(g: u32) -> AbsPlace {
+        AbsPlace {
+            root: AbsRoot::Global(g),
+            path: Vec::new(),
+        }
+    }
+}
+
+/// Why a walk failed.
+pub(crate) enum WalkErr {
+    NotPresent,
+    OutOfBounds { idx: Vec<i64>, dims: Vec<u32> },
+    Shape,
+}
+
+fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
+    match v {
+        Value::Record(fs) => fs.get(f as usize).ok_or(WalkErr::Shape),
+        Value::Absent => Err(WalkErr::NotPresent),
+        _ => Err(WalkErr::Shape),
+    }
+}
+
+fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
+    match v {
+        Value::Record(fs) => fs.get_mut(f as usize).ok_or(WalkErr::Shape),
+        Value::Absent => Err(WalkErr::NotPresent),
+        _ => Err(WalkErr::Shape),
+    }
+}
+
+fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
+    match v {
+        Value::Array(a) => match a.offset(idx) {
+            Some(o) => a.data.get(o).ok_or(WalkErr::Shape),
+            None => Err(oob(a, idx)),
+        },
+        Value::Absent => Err(WalkErr::NotPresent),
+        _ => Err(WalkErr::Shape),
+    }
+}
+
+fn oob(a: &Array, idx: &[i64]) -> WalkErr {
+    WalkErr::OutOfBounds {
+        idx: idx.to_vec(),
+        dims: a.sizes().to_vec(),
+    }
+}
+
+fn step(v: &Value, s: Step) -> Result<&Value, WalkErr> {
+    match s {
+        Step::Field(f) => field(v, f),
+        Step::Elem(o) => match v {
+            Value::Array(a) => a.data.get(o as usize).ok_or(WalkErr::Shape),
+            Value::Absent => Err(WalkErr::NotPresent),
+            _ => Err(WalkErr::Shape),
+        },
+    }
+}
+
+fn step_mut(v: &mut Value, s: Step) -> Result<&mut Value, WalkErr> {
+    match s {
+        Step::Field(f) => field_mut(v, f),
+        Step::Elem(o) => match v {
+            Value::Array(a) => a.data.get_mut(o as usize).ok_or(WalkErr::Shape),
+            Value::Absent => Err(WalkErr::NotPresent),
+            _ => Err(WalkErr::Shape),
+        },
+    }
+}
+
+impl Interp {
+    /// Current frame's (value base, reference base).
+    #[inline]
+    pub(crate) fn bases(&self) -> (usize, usize) {
+        match self.frames.last() {
+            Some(f) => (f.bp, f.rbp),
+            None => (0, 0),
+        }
+    }
+
+    pub(crate) fn walk_err(&self, e: WalkErr, span: Span) -> super::Unwind {
+        match e {
+            WalkErr::NotPresent => self.error(
+                errnum::ERR_NOTPRES,
+                span,
+                "the optional parameter was not passed",
+            ),
+            WalkErr::OutOfBounds { idx, dims } => {
+                let i: Vec<String> = idx.iter().map(|x| x.to_string()).collect();
+                let d: Vec<String> = dims.iter().map(|x| x.to_string()).collect();
+                self.error(
+                    errnum::ERR_OUTOFBND,
+                    span,
+                    format!(
+                        "index {{{}}} is outside the array bounds {{{}}}",
+                        i.join(","),
+                        d.join(",")
+                    ),
+                )
+            }
+            WalkErr::Shape => self.fatal(
+                super::ErrorKind::Host,
+                span,
+                "internal error: value does not have the checked shape",
+            ),
+        }
+    }
+
+    /// The value an absolute place points at.
+    pub(crate) fn abs_get(&self, p: &AbsPlace) -> Result<&Value, WalkErr> {
+        let mut v = match p.root {
+            AbsRoot::Stack(i) => self.stack.get(i as usize).ok_or(WalkErr::Shape)?,
+            AbsRoot::Global(g) => self.globals.get(g as usize).ok_or(WalkErr::Shape)?,
+            AbsRoot::Absent => return Err(WalkErr::NotPresent),
+        };
+        for &s in &p.path {
+            v = step(v, s)?;
+        }
+        Ok(v)
+    }
+
+    /// The value an absolute place points at, mutably.
+    pub(crate) fn abs_get_mut(&mut self, p: &AbsPlace) -> Result<&mut Value, WalkErr> {
+        let mut v = match p.root {
+            AbsRoot::Stack(i) => self.stack.get_mut(i as usize).ok_or(WalkErr::Shape)?,
+            AbsRoot::Global(g) => self.globals.get_mut(g as usize).ok_or(WalkErr::Shape)?,
+            AbsRoot::Absent => return Err(WalkErr::NotPresent),
+        };
+        for &s in &p.path {
+            v = step_mut(v, s)?;
+        }
+        Ok(v)
+    }
+
+    /// Evaluate an array index: a `num` with an integer value.
+    pub(crate) fn eval_index(&mut self, p: &Program, e: &crate::ir::Expr) -> Exec<i64> {
+        let x = self.eval_f64(p, e)?;
+        if x.fract() != 0.0 || !x.is_finite() {
+            return Err(self.error(
+                errnum::ERR_NOTINTVAL,
+                e.span,
+                format!("array index {x} is not an integer"),
+            ));
+        }
+        Ok(x as i64)
+    }
+
+    /// Evaluate every index of a place onto the index stack; returns the mark to truncate to.
+    fn push_indices(&mut self, p: &Program, pl: &Place) -> Exec<usize> {
+        let mark = self.idx.len();
+        for op in pl.path.iter() {
+            if let PathOp::Index(es) = op {
+                for e in es.iter() {
+                    match self.eval_index(p, e) {
+                        Ok(i) => self.idx.push(i),
+                        Err(u) => {
+                            self.idx.truncate(mark);
+                            return Err(u);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(mark)
+    }
+
+    fn read_walk(&self, pl: &Place, mark: usize) -> Result<&Value, WalkErr> {
+        let (bp, rbp) = self.bases();
+        let mut v = match pl.root {
+            Root::Local(s) => self.stack.get(bp + s as usize).ok_or(WalkErr::Shape)?,
+            Root::Global(g) => self.globals.get(g as usize).ok_or(WalkErr::Shape)?,
+            Root::Ref(k) => {
+                let r = self.refs.get(rbp + k as usize).ok_or(WalkErr::Shape)?;
+                self.abs_get(r)?
+            }
+        };
+        let mut ii = mark;
+        for op in pl.path.iter() {
+            match op {
+                PathOp::Field(f) => v = field(v, *f)?,
+                PathOp::Index(es) => {
+                    let n = es.len();
+                    v = elem(v, &self.idx[ii..ii + n])?;
+                    ii += n;
+                }
+            }
+        }
+        if let Value::Absent = v {
+            return Err(WalkErr::NotPresent);
+        }
+        Ok(v)
+    }
+
+    /// Read the value of a place (a copy).
+    pub(crate) fn load(&mut self, p: &Program, pl: &Place) -> Exec<Value> {
+        let mark = self.push_indices(p, pl)?;
+        let r = match self.read_walk(pl, mark) {
+            Ok(v) => Ok(v.clone()),
+            Err(e) => Err(self.walk_err(e, pl.span)),
+        };
+        self.idx.truncate(mark);
+        r
+    }
+
+    /// Read a `num` place without copying anything else.
+    pub(crate) fn load_f32(&mut self, p: &Program, pl: &Place) -> Exec<Option<f32>> {
+        let mark = self.push_indices(p, pl)?;
+        let r = match self.read_walk(pl, mark) {
+            Ok(Value::Num(x)) => Ok(Some(*x)),
+            Ok(_) => Ok(None),
+            Err(e) => Err(self.walk_err(e, pl.span)),
+        };
+        self.idx.truncate(mark);
+        r
+    }
+
+    /// Resolve a place to an absolute reference (for reference arguments).
+    pub(crate) fn resolve(&mut self, p: &Program, pl: &Place) -> Exec<AbsPlace> {
+        let (bp, rbp) = self.bases();
+        let mut ap = match pl.root {
+            Root::Local(s) => AbsPlace {
+                root: AbsRoot::Stack((bp + s as usize) as u32),
+                path: Vec::new(),
+            },
+            Root::Global(g) => AbsPlace::global(g),
+            Root::Ref(k) => match self.refs.get(rbp + k as usize) {
+                Some(r) => r.clone(),
+                None => return Err(self.walk_err(WalkErr::Shape, pl.span)),
+            },
+        };
+        if ap.root == AbsRoot::Absent {
+            return Err(self.walk_err(WalkErr::NotPresent, pl.span));
+        }
+        for op in pl.path.iter() {
+            match op {
+                PathOp::Field(f) => ap.path.push(super::place::Step::Field(*f)),
+                PathOp::Index(es) => {
+                    let mut idx = [0i64; 3];
+                    let n = es.len().min(3);
+                    for (k, e) in es.iter().take(3).enumerate() {
+                        idx[k] = self.eval_index(p, e)?;
+                    }
+                    let off = match self.abs_get(&ap) {
+                        Ok(Value::Array(a)) => match a.offset(&idx[..n]) {
+                            Some(o) => o,
+                            None => return Err(self.walk_err(oob(a, &idx[..n]), pl.span)),
+                        },
+                        Ok(_) => return Err(self.walk_err(WalkErr::Shape, pl.span)),
+                        Err(e) => return Err(self.walk_err(e, pl.span)),
+                    };
+                    ap.path.push(Step::Elem(off as u32));
+                }
+            }
+        }
+        Ok(ap)
+    }
+
+    /// Store a value into a place.
+    pub(crate) fn store(&mut self, p: &Program, pl: &Place, v: Value) -> Exec<()> {
+        // Fast path: a whole local or global.
+        if pl.path.is_empty() {
+            let (bp, _) = self.bases();
+            let slot = match pl.root {
+                Root::Local(s) => self.stack.get_mut(bp + s as usize),
+                Root::Global(g) => self.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            if let Some(slot) = slot {
+                return match same_dims(slot, &v) {
+                    true => {
+                        *slot = v;
+                        Ok(())
+                    }
+                    false => Err(self.dims_error(pl.span)),
+                };
+            }
+        }
+        let ap = self.resolve(p, pl)?;
+        self.store_abs(&ap, v, pl.span)
+    }
+
+    /// Store a value through an absolute place.
+    pub(crate) fn store_abs(&mut self, ap: &AbsPlace, v: Value, span: Span) -> Exec<()> {
+        match self.abs_get_mut(ap) {
+            Ok(slot) => {
+                if same_dims(slot, &v) {
+                    *slot = v;
+                    Ok(())
+                } else {
+                    Err(self.dims_error(span))
+                }
+            }
+            Err(e) => Err(self.walk_err(e, span)),
+        }
+    }
+
+    fn dims_error(&self, span: Span) -> super::Unwind {
+        self.error(
+            errnum::ERR_NOTEQDIM,
+            span,
+            "the array sizes of the value and the target differ",
+        )
+    }
+}
+
+/// Arrays may only be replaced by arrays of the same sizes.
+fn same_dims(old: &Value, new: &Value) -> bool {
+    match (old, new) {
+        (Value::Array(a), Value::Array(b)) => a.dims == b.dims && a.rank == b.rank,
+        _ => true,
+    }
+}

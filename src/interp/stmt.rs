@@ -1,0 +1,316 @@
+//! Statement execution: blocks with labels and GOTO, control flow, RAISE/RETRY/TRYNEXT and
+//! the ERROR handler protocol, and the per-statement slow path (budget, hook, interrupts).
+
+use super::errnum;
+use super::error::{ErrorKind, Exec, RuntimeError, Unwind};
+use super::value::{values_equal, Value};
+use super::{HookAction, Interp, StmtEvent};
+use crate::ir::{Block, Program, Stmt, StmtKind};
+use crate::source::Span;
+
+/// How execution continues after an ERROR handler.
+enum Resume {
+    /// RETRY: run the failed statement again.
+    Retry,
+    /// TRYNEXT: continue after it.
+    Next,
+}
+
+impl Interp {
+    /// Execute a statement list.
+    pub(crate) fn exec_block(&mut self, p: &Program, b: &Block) -> Exec<()> {
+        let n = b.stmts.len();
+        let mut i = 0usize;
+        let mut retries = 0u32;
+        while i < n {
+            let s = &b.stmts[i];
+            self.steps += 1;
+            if self.steps >= self.next_poll {
+                self.poll(p, s.span)?;
+            }
+            match self.exec_stmt(p, s) {
+                Ok(()) => {
+                    i += 1;
+                    retries = 0;
+                }
+                Err(Unwind::Error(e)) => match self.handle_error(p, e)? {
+                    Resume::Retry => {
+                        retries += 1;
+                        if retries > self.retry_limit {
+                            let e = self.make_error(
+                                ErrorKind::Rapid(errnum::ERR_EXCRTYMAX),
+                                s.span,
+                                format!(
+                                    "the statement failed again after {} RETRYs",
+                                    self.retry_limit
+                                ),
+                            );
+                            return Err(Unwind::Propagate(e));
+                        }
+                    }
+                    Resume::Next => {
+                        i += 1;
+                        retries = 0;
+                    }
+                },
+                Err(Unwind::Goto(l)) => match b.labels.iter().find(|(id, _)| *id == l) {
+                    Some(&(_, at)) => i = at as usize,
+                    None => return Err(Unwind::Goto(l)),
+                },
+                Err(u) => return Err(u),
+            }
+        }
+        Ok(())
+    }
+
+    fn exec_stmt(&mut self, p: &Program, s: &Stmt) -> Exec<()> {
+        match &s.kind {
+            StmtKind::Assign { place, value } => {
+                let v = self.eval(p, value)?;
+                self.store(p, place, v)
+            }
+            StmtKind::Call { routine, args } => {
+                self.call_routine(p, *routine, args, s.span).map(drop)
+            }
+            StmtKind::Native { native, args } => {
+                self.call_native(p, *native, args, s.span).map(drop)
+            }
+            StmtKind::LateCall { name, args, module } => {
+                let n = self.eval_str(p, name)?;
+                self.late_call(p, &n, args, *module, s.span)
+            }
+            StmtKind::If {
+                branches,
+                else_body,
+            } => {
+                for (c, b) in branches {
+                    if self.eval_bool(p, c)? {
+                        return self.exec_block(p, b);
+                    }
+                }
+                match else_body {
+                    Some(b) => self.exec_block(p, b),
+                    None => Ok(()),
+                }
+            }
+            StmtKind::While { cond, body } => {
+                while self.eval_bool(p, cond)? {
+                    self.exec_block(p, body)?;
+                }
+                Ok(())
+            }
+            StmtKind::For {
+                slot,
+                from,
+                to,
+                step,
+                body,
+            } => self.exec_for(p, *slot, from, to, step.as_ref(), body, s.span),
+            StmtKind::Test {
+                subject,
+                cases,
+                default,
+            } => {
+                let v = self.eval(p, subject)?;
+                for (vals, b) in cases {
+                    for e in vals {
+                        let c = self.eval(p, e)?;
+                        if values_equal(&v, &c) {
+                            return self.exec_block(p, b);
+                        }
+                    }
+                }
+                match default {
+                    Some(b) => self.exec_block(p, b),
+                    None => Ok(()),
+                }
+            }
+            StmtKind::Label(_) => Ok(()),
+            StmtKind::Goto(l) => Err(Unwind::Goto(*l)),
+            StmtKind::Return(e) => {
+                let v = match e {
+                    Some(e) => self.eval(p, e)?,
+                    None => Value::Absent,
+                };
+                Err(Unwind::Return(v))
+            }
+            StmtKind::Raise(e) => self.exec_raise(p, e.as_ref(), s.span),
+            StmtKind::Retry => Err(Unwind::Retry),
+            StmtKind::TryNext => Err(Unwind::TryNext),
+            StmtKind::Exit => Err(Unwind::Exit),
+            StmtKind::Connect { place, trap } => self.connect(p, place, *trap, s.span),
+            StmtKind::Placeholder(ph) => Err(self.fatal(
+                ErrorKind::Placeholder,
+                s.span,
+                format!("the placeholder {ph} cannot be executed"),
+            )),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn exec_for(
+        &mut self,
+        p: &Program,
+        slot: u32,
+        from: &crate::ir::Expr,
+        to: &crate::ir::Expr,
+        step: Option<&crate::ir::Expr>,
+        body: &Block,
+        span: Span,
+    ) -> Exec<()> {
+        let a = self.eval_num(p, from)?;
+        let b = self.eval_num(p, to)?;
+        let st = match step {
+            Some(e) => self.eval_num(p, e)?,
+            None if a > b => -1.0,
+            None => 1.0,
+        };
+        if st == 0.0 || !st.is_finite() {
+            return Err(self.error(
+                errnum::ERR_ARGVALERR,
+                span,
+                "the STEP of a FOR loop must not be zero",
+            ));
+        }
+        let idx = self.bases().0 + slot as usize;
+        let mut i = a;
+        while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
+            if let Some(v) = self.stack.get_mut(idx) {
+                *v = Value::Num(i);
+            }
+            self.exec_block(p, body)?;
+            let next = i + st;
+            if next == i {
+                return Err(self.error(
+                    errnum::ERR_NUM_LIMIT,
+                    span,
+                    format!("the FOR counter cannot advance past {i} in num precision"),
+                ));
+            }
+            i = next;
+        }
+        Ok(())
+    }
+
+    fn exec_raise(&mut self, p: &Program, e: Option<&crate::ir::Expr>, span: Span) -> Exec<()> {
+        let handling = self.frames.last().and_then(|f| f.handling.clone());
+        let Some(e) = e else {
+            // `RAISE;` in a handler: pass the same error to the caller.
+            return match handling {
+                Some(err) => Err(Unwind::Propagate(err)),
+                None => Err(self.error(
+                    errnum::ERR_ILLRAISE,
+                    span,
+                    "RAISE without an error number outside an ERROR handler",
+                )),
+            };
+        };
+        let x = self.eval_f64(p, e)?;
+        let n = x as i32;
+        let valid = x.fract() == 0.0
+            && ((1..=90).contains(&n)
+                || (errnum::BOOK_FIRST..self.next_booked).contains(&n)
+                || errnum::by_num(n).is_some());
+        let err = if valid {
+            self.make_error(ErrorKind::Rapid(n), span, "")
+        } else {
+            self.make_error(
+                ErrorKind::Rapid(errnum::ERR_ILLRAISE),
+                span,
+                format!("RAISE {x}: user error numbers are 1–90 or booked with BookErrNo"),
+            )
+        };
+        if handling.is_some() {
+            Err(Unwind::Propagate(err))
+        } else {
+            Err(Unwind::Error(err))
+        }
+    }
+
+    /// Offer an error to the current routine's ERROR handler.
+    fn handle_error(&mut self, p: &Program, e: Box<RuntimeError>) -> Exec<Resume> {
+        let Some(errno) = e.errno() else {
+            return Err(Unwind::Fatal(e));
+        };
+        let Some(f) = self.frames.last() else {
+            return Err(Unwind::Propagate(e));
+        };
+        if f.handling.is_some() {
+            // An error inside an ERROR handler goes to the system handler.
+            return Err(Unwind::Fatal(e));
+        }
+        let r = p.routine(f.routine);
+        let Some(h) = &r.error else {
+            return Err(Unwind::Propagate(e));
+        };
+        if let Some(list) = &h.errnos {
+            let mut hit = false;
+            for x in list {
+                if self.eval_f64(p, x)? == errno as f64 {
+                    hit = true;
+                    break;
+                }
+            }
+            if !hit {
+                return Err(Unwind::Propagate(e));
+            }
+        }
+        self.errno = errno;
+        if let Some(f) = self.frames.last_mut() {
+            f.handling = Some(e);
+        }
+        let res = self.exec_block(p, &h.body);
+        if let Some(f) = self.frames.last_mut() {
+            f.handling = None;
+        }
+        match res {
+            Ok(()) => Err(Unwind::Return(Value::Absent)),
+            Err(Unwind::Retry) => Ok(Resume::Retry),
+            Err(Unwind::TryNext) => Ok(Resume::Next),
+            Err(other) => Err(other),
+        }
+    }
+
+    /// The per-statement slow path: budget, hook, interrupts.
+    fn poll(&mut self, p: &Program, span: Span) -> Exec<()> {
+        if let Some(b) = self.budget
+            && self.steps > b
+        {
+            return Err(self.fatal(
+                ErrorKind::Aborted,
+                span,
+                format!("the operation budget of {b} statements is exhausted"),
+            ));
+        }
+        if let Some(mut h) = self.hook.take() {
+            let routine = self
+                .frames
+                .last()
+                .map(|f| p.routine(f.routine).name.as_str())
+                .unwrap_or("");
+            let ev = StmtEvent {
+                span,
+                routine,
+                depth: self.frames.len(),
+                steps: self.steps,
+            };
+            let action = h(&ev);
+            self.hook = Some(h);
+            if action == HookAction::Abort {
+                return Err(self.fatal(
+                    ErrorKind::Aborted,
+                    span,
+                    "execution stopped by the before-statement hook",
+                ));
+            }
+        }
+        if self.ints.armed() {
+            if let Some(f) = self.frames.last_mut() {
+                f.at = span;
+            }
+            self.service_interrupts(p, span)?;
+        }
+        self.update_poll();
+        Ok(())
+    }
+}

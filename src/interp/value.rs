@@ -1,0 +1,227 @@
+//! Run-time values: `num` as `f32` (single precision, as on a controller), `dnum` as `f64`,
+//! `bool`, `string` (shared, immutable text), records and arrays.
+//!
+//! Scalars are stored inline, so `num`/`bool` arithmetic never allocates. Records and arrays
+//! are owned (deep copies on assignment, as RAPID's value semantics require).
+
+use std::sync::Arc;
+
+use crate::ir::{Ty, TypeId, TypeKind, TypeTable};
+
+/// Longest string RAPID holds.
+pub const MAX_STRING: usize = 80;
+
+/// A RAPID value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// `num` (and every alias of it).
+    Num(f32),
+    /// `dnum`.
+    Dnum(f64),
+    /// `bool`.
+    Bool(bool),
+    /// `string`.
+    Str(Arc<str>),
+    /// A record: components in declaration order.
+    Record(Box<[Value]>),
+    /// An array.
+    Array(Box<Array>),
+    /// An optional parameter that was not passed (or a value not yet set).
+    Absent,
+}
+
+/// An array of 1–3 dimensions, stored row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Array {
+    /// Sizes; unused trailing dimensions are 1.
+    pub dims: [u32; 3],
+    /// Number of dimensions (1–3).
+    pub rank: u8,
+    /// Elements.
+    pub data: Vec<Value>,
+}
+
+impl Array {
+    /// Row-major offset of 1-based indices, or `None` when one is out of bounds.
+    pub fn offset(&self, idx: &[i64]) -> Option<usize> {
+        if idx.len() != self.rank as usize {
+            return None;
+        }
+        let mut off: usize = 0;
+        for (k, &i) in idx.iter().enumerate() {
+            let n = self.dims[k] as i64;
+            if i < 1 || i > n {
+                return None;
+            }
+            off = off * n as usize + (i - 1) as usize;
+        }
+        Some(off)
+    }
+
+    /// Sizes actually used.
+    pub fn sizes(&self) -> &[u32] {
+        &self.dims[..self.rank as usize]
+    }
+}
+
+impl Value {
+    /// A string value (the caller has checked the length).
+    pub fn str(s: &str) -> Value {
+        Value::Str(Arc::from(s))
+    }
+
+    /// The number, for num values.
+    pub fn as_num(&self) -> Option<f32> {
+        match self {
+            Value::Num(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The number as f64, for num and dnum values.
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Num(x) => Some(*x as f64),
+            Value::Dnum(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The bool, for bool values.
+    pub fn as_bool(&self) -> Option<bool> {
+        match self {
+            Value::Bool(b) => Some(*b),
+            _ => None,
+        }
+    }
+
+    /// The text, for strings.
+    pub fn as_str(&self) -> Option<&str> {
+        match self {
+            Value::Str(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// Components, for records.
+    pub fn fields(&self) -> Option<&[Value]> {
+        match self {
+            Value::Record(f) => Some(f),
+            _ => None,
+        }
+    }
+
+    /// True unless this is [`Value::Absent`].
+    pub fn is_present(&self) -> bool {
+        !matches!(self, Value::Absent)
+    }
+
+    /// Components of a record of numbers as f64 (pos, orient, …).
+    pub fn num_fields<const N: usize>(&self) -> Option<[f64; N]> {
+        let f = self.fields()?;
+        if f.len() != N {
+            return None;
+        }
+        let mut out = [0.0; N];
+        for (o, v) in out.iter_mut().zip(f) {
+            *o = v.as_f64()?;
+        }
+        Some(out)
+    }
+
+    /// A record of `num` components from f64 values (rounded to single precision).
+    pub fn num_record(vals: &[f64]) -> Value {
+        Value::Record(vals.iter().map(|&x| Value::Num(x as f32)).collect())
+    }
+}
+
+/// Structural equality as RAPID's `=`: numbers by value (num and dnum compare as numbers),
+/// records and arrays component-wise.
+pub fn values_equal(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Num(x), Value::Num(y)) => x == y,
+        (Value::Dnum(x), Value::Dnum(y)) => x == y,
+        (Value::Num(x), Value::Dnum(y)) | (Value::Dnum(y), Value::Num(x)) => (*x as f64) == *y,
+        (Value::Bool(x), Value::Bool(y)) => x == y,
+        (Value::Str(x), Value::Str(y)) => x == y,
+        (Value::Record(x), Value::Record(y)) => {
+            x.len() == y.len() && x.iter().zip(y.iter()).all(|(p, q)| values_equal(p, q))
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            x.dims == y.dims
+                && x.data.len() == y.data.len()
+                && x.data.iter().zip(&y.data).all(|(p, q)| values_equal(p, q))
+        }
+        (Value::Absent, Value::Absent) => true,
+        _ => false,
+    }
+}
+
+/// The value a declaration without initialiser gets: `0`, `FALSE`, `""`, records of
+/// defaults, arrays of defaults.
+pub fn default_value(types: &TypeTable, ty: Ty, dims: &[u32]) -> Value {
+    if ty.rank > 0 && !dims.is_empty() {
+        let mut d = [1u32; 3];
+        for (k, &n) in dims.iter().take(3).enumerate() {
+            d[k] = n;
+        }
+        let count: usize = dims.iter().map(|&n| n as usize).product();
+        let elem = default_value(types, ty.elem(), &[]);
+        return Value::Array(Box::new(Array {
+            dims: d,
+            rank: dims.len().min(3) as u8,
+            data: vec![elem; count],
+        }));
+    }
+    default_scalar(types, ty.base)
+}
+
+fn default_scalar(types: &TypeTable, id: TypeId) -> Value {
+    let id = types.resolve(id);
+    match &types.get(id).kind {
+        TypeKind::Num => Value::Num(0.0),
+        TypeKind::Dnum => Value::Dnum(0.0),
+        TypeKind::Bool => Value::Bool(false),
+        TypeKind::String => Value::Str(Arc::from("")),
+        TypeKind::Switch => Value::Absent,
+        TypeKind::Record { fields, .. } => Value::Record(
+            fields
+                .iter()
+                .map(|f| default_value(types, f.ty, &f.dims))
+                .collect(),
+        ),
+        TypeKind::Alias(b) => default_scalar(types, *b),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_is_small() {
+        assert!(std::mem::size_of::<Value>() <= 24);
+    }
+
+    #[test]
+    fn array_offsets_are_row_major_and_checked() {
+        let a = Array {
+            dims: [2, 3, 1],
+            rank: 2,
+            data: vec![Value::Num(0.0); 6],
+        };
+        assert_eq!(a.offset(&[1, 1]), Some(0));
+        assert_eq!(a.offset(&[2, 3]), Some(5));
+        assert_eq!(a.offset(&[3, 1]), None);
+        assert_eq!(a.offset(&[0, 1]), None);
+        assert_eq!(a.offset(&[1]), None);
+    }
+
+    #[test]
+    fn equality_is_structural() {
+        let p = Value::num_record(&[1.0, 2.0, 3.0]);
+        assert!(values_equal(&p, &Value::num_record(&[1.0, 2.0, 3.0])));
+        assert!(!values_equal(&p, &Value::num_record(&[1.0, 2.0, 4.0])));
+        assert!(values_equal(&Value::Num(9e9), &Value::Num(9e9_f64 as f32)));
+    }
+}

@@ -1,0 +1,219 @@
+//! The semantic pass: resolves names across all loaded modules (routine scope, `LOCAL`,
+//! global, stdlib, predefined), checks types, storage classes, parameter modes and routine
+//! signatures (user routines and natives), and lowers the AST to [`crate::ir::Program`].
+//!
+//! Entry point: [`analyze`]. Every problem becomes a [`SemaError`] with a
+//! `rapidvc::sema::…` code; errors are accumulated, and a program is returned only when
+//! there are none (warnings are allowed).
+
+mod call;
+mod collect;
+mod consteval;
+pub mod error;
+mod expr;
+mod order;
+mod predef;
+mod stmt;
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use crate::ast;
+use crate::diag::Diagnostics;
+use crate::ir::{
+    Global, GlobalId, ModuleId, ModuleInfo, NativeId, NativeSig, Program, Routine, RoutineId,
+    Ty, TypeTable,
+};
+use crate::source::Span;
+pub use error::{SemaError, SemaErrorKind};
+pub use predef::SignalKind;
+
+/// What the program's surroundings define: I/O signals and mechanical units.
+#[derive(Clone, Debug)]
+pub struct Env {
+    /// Configured I/O signals (name, kind); they become global data of type `signaldi` …
+    pub signals: Vec<(String, SignalKind)>,
+    /// Mechanical units (`ROB_1`).
+    pub mecunits: Vec<String>,
+}
+
+impl Default for Env {
+    fn default() -> Self {
+        Env {
+            signals: Vec::new(),
+            mecunits: vec!["ROB_1".to_string()],
+        }
+    }
+}
+
+/// One parsed file to analyse.
+#[derive(Clone, Copy, Debug)]
+pub struct Input<'a> {
+    /// The parsed file.
+    pub file: &'a ast::File,
+    /// Part of rapidvc's embedded stdlib (its global data may not be redeclared).
+    pub stdlib: bool,
+}
+
+/// Check and lower a whole program (stdlib inputs first). Diagnostics go to `diags`; the
+/// program is returned when there are no errors.
+pub fn analyze(
+    inputs: &[Input<'_>],
+    natives: Arc<[NativeSig]>,
+    env: &Env,
+    diags: &mut Diagnostics,
+) -> Option<Program> {
+    let mut c = Checker::new(natives);
+    for inp in inputs {
+        for m in &inp.file.modules {
+            c.add_module(m, inp.stdlib);
+        }
+    }
+    c.collect_types();
+    c.predefined_data(env);
+    c.collect_globals();
+    c.collect_routines();
+    c.check_native_signatures();
+    c.lower_global_inits();
+    let init_order = c.init_order();
+    c.lower_routines();
+    let mut has_errors = false;
+    c.errors.sort_by_key(|e| (e.span.source, e.span.start));
+    for e in c.errors {
+        has_errors |= !e.is_warning();
+        diags.push(e);
+    }
+    if has_errors {
+        return None;
+    }
+    let mut procs_by_name: HashMap<String, Vec<RoutineId>> = HashMap::new();
+    for (i, r) in c.routines.iter().enumerate() {
+        procs_by_name
+            .entry(r.name.to_ascii_uppercase())
+            .or_default()
+            .push(RoutineId(i as u32));
+    }
+    Some(Program {
+        types: c.types,
+        modules: c.modules,
+        globals: c.globals,
+        routines: c.routines,
+        natives: c.natives,
+        init_order,
+        procs_by_name,
+    })
+}
+
+/// What a local name in a routine stands for.
+#[derive(Clone, Debug)]
+enum LocalSym {
+    /// A parameter (index into the routine's params).
+    Param(usize),
+    /// Routine data.
+    Data {
+        slot: u32,
+        ty: Ty,
+        dims: Vec<u32>,
+        constant: bool,
+        /// The value of a numeric CONST, when it is known before running.
+        cval: Option<f64>,
+    },
+}
+
+/// Per-routine lowering state.
+struct RoutineCx {
+    rid: RoutineId,
+    func_ret: Option<Ty>,
+    scope: HashMap<String, LocalSym>,
+    for_vars: Vec<(String, u32)>,
+    n_slots: u32,
+    /// Label name → id, for the whole routine.
+    labels: HashMap<String, u32>,
+    /// Labels of the blocks enclosing the statement being lowered, innermost last.
+    block_labels: Vec<Vec<u32>>,
+    in_handler: bool,
+    returns: u32,
+}
+
+/// The checker's state across the whole program.
+pub(crate) struct Checker<'a> {
+    errors: Vec<SemaError>,
+    types: TypeTable,
+    /// Types declared by a module (with the declaring span), for duplicate reports.
+    type_spans: HashMap<String, Span>,
+    natives: Arc<[NativeSig]>,
+    native_syms: HashMap<String, NativeId>,
+    native_params: Vec<Option<Vec<call::PView>>>,
+    modules: Vec<ModuleInfo>,
+    module_asts: Vec<&'a ast::Module>,
+    globals: Vec<Global>,
+    /// The declarations behind each module global (several for a shared PERS).
+    global_decls: Vec<Vec<(ModuleId, &'a ast::DataDecl)>>,
+    data_syms: HashMap<String, Vec<GlobalId>>,
+    routines: Vec<Routine>,
+    routine_asts: Vec<&'a ast::Routine>,
+    routine_syms: HashMap<String, Vec<RoutineId>>,
+    cur_module: ModuleId,
+    rcx: Option<RoutineCx>,
+    /// Globals referenced while lowering a global initialiser.
+    deps: Vec<GlobalId>,
+    init_deps: Vec<Vec<GlobalId>>,
+    const_state: HashMap<u32, consteval::ConstState>,
+    pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
+}
+
+impl<'a> Checker<'a> {
+    fn new(natives: Arc<[NativeSig]>) -> Self {
+        let native_syms = natives
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (s.name.to_ascii_uppercase(), NativeId(i as u32)))
+            .collect();
+        let n = natives.len();
+        Checker {
+            errors: Vec::new(),
+            types: predef::builtin_types(),
+            type_spans: HashMap::new(),
+            natives,
+            native_syms,
+            native_params: vec![None; n],
+            modules: Vec::new(),
+            module_asts: Vec::new(),
+            globals: Vec::new(),
+            global_decls: Vec::new(),
+            data_syms: HashMap::new(),
+            routines: Vec::new(),
+            routine_asts: Vec::new(),
+            routine_syms: HashMap::new(),
+            cur_module: ModuleId(0),
+            rcx: None,
+            deps: Vec::new(),
+            init_deps: Vec::new(),
+            const_state: HashMap::new(),
+            pending_records: Vec::new(),
+        }
+    }
+
+    fn err(&mut self, kind: SemaErrorKind, span: Span) {
+        self.errors.push(SemaError::new(kind, span));
+    }
+
+    fn add_module(&mut self, m: &'a ast::Module, stdlib: bool) {
+        self.modules.push(ModuleInfo {
+            name: m.name.node.clone(),
+            source: m.span.source,
+            stdlib,
+        });
+        self.module_asts.push(m);
+    }
+
+    fn is_stdlib(&self, m: ModuleId) -> bool {
+        self.modules
+            .get(m.0 as usize)
+            .is_some_and(|mi| mi.stdlib)
+    }
+
+    fn ty_name(&self, ty: Ty) -> String {
+        self.types.display(ty)
+    }
+}
