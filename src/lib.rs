@@ -15,4 +15,6 @@ pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod diag;
+pub mod load;
+pub mod parse;
 pub mod source;
