@@ -6,6 +6,8 @@
 
 use crate::source::{Span, Spanned};
 
+mod dump;
+
 /// An identifier with its original spelling and position.
 pub type Ident = Spanned<String>;
 

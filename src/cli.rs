@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod check;
+mod dump_ast;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -21,11 +22,15 @@ pub struct Cli {
 pub enum Command {
     /// Check RAPID files or directories for syntax and semantic errors.
     Check(check::CheckArgs),
+    /// Print the syntax tree of one file (for debugging the parser).
+    #[command(hide = true)]
+    DumpAst(dump_ast::DumpAstArgs),
 }
 
 /// Run the parsed command line and return the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
+        Command::DumpAst(args) => dump_ast::run(args),
     }
 }

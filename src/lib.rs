@@ -17,5 +17,7 @@ pub mod cli;
 pub mod diag;
 pub mod interp;
 pub mod ir;
+pub mod load;
+pub mod parse;
 pub mod sema;
 pub mod source;

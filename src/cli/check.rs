@@ -1,7 +1,17 @@
-//! `rapidvc check PATH…`.
+//! `rapidvc check PATH…`: parse and check RAPID files, print diagnostics (human or JSON),
+//! exit 0 when clean (warnings allowed), 1 when errors were found, 2 on usage or I/O errors.
 
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+
+use miette::{GraphicalReportHandler, GraphicalTheme};
+
+use crate::ast;
+use crate::diag::Diagnostics;
+use crate::load;
+use crate::parse;
+use crate::source::SourceMap;
 
 /// Arguments of `rapidvc check`.
 #[derive(Debug, clap::Args)]
@@ -9,10 +19,112 @@ pub struct CheckArgs {
     /// Files or directories (searched recursively for .mod, .modx, .sys, .prg).
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
+    /// Check syntax and structure only (no name resolution): for a single module taken out
+    /// of a larger program.
+    #[arg(long)]
+    pub syntax: bool,
+    /// Output format of the diagnostics.
+    #[arg(long, value_enum, default_value_t = Format::Human)]
+    pub format: Format,
+}
+
+/// How diagnostics are printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Source snippets with labels (on stderr), and a summary line.
+    Human,
+    /// One JSON array of diagnostics on stdout.
+    Json,
+}
+
+/// How much the check covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Depth {
+    /// Syntax and structure of each file on its own.
+    Syntax,
+    /// Everything rapidvc can check for the files as one program. Until the semantic pass
+    /// exists, that is syntax and structure too.
+    Full,
 }
 
 /// Run the check.
-pub fn run(_args: CheckArgs) -> ExitCode {
-    eprintln!("rapidvc check: the RAPID front end is being built (issue 2)");
-    ExitCode::from(2)
+pub fn run(args: CheckArgs) -> ExitCode {
+    let files = match load::find_rapid_files(&args.paths) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let depth = if args.syntax {
+        Depth::Syntax
+    } else {
+        Depth::Full
+    };
+    let mut map = SourceMap::new();
+    let mut diags = Diagnostics::new();
+    let mut io_failed = false;
+    let mut parsed: Vec<ast::File> = Vec::with_capacity(files.len());
+    for path in &files {
+        match load::load_file(&mut map, path) {
+            Ok(id) => {
+                let file = parse::parse_file(id, &map.get(id).text, &mut diags);
+                parse::check_structure(&file, &mut diags);
+                parsed.push(file);
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                io_failed = true;
+            }
+        }
+    }
+    match depth {
+        Depth::Syntax => {}
+        // The semantic pass (names, types, signatures over all `parsed` files) runs here.
+        Depth::Full => {}
+    }
+    diags.sort();
+    report(&diags, &map, args.format, files.len());
+    if io_failed {
+        ExitCode::from(2)
+    } else if diags.has_errors() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn report(diags: &Diagnostics, map: &SourceMap, format: Format, files: usize) {
+    match format {
+        Format::Json => {
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "{}", diags.to_json(map));
+        }
+        Format::Human => {
+            let color = std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+            let theme = if color {
+                GraphicalTheme::unicode()
+            } else {
+                GraphicalTheme::unicode_nocolor()
+            };
+            let width = terminal_width().unwrap_or(100);
+            let handler = GraphicalReportHandler::new_themed(theme)
+                .with_width(width)
+                .with_links(false);
+            let mut err = std::io::stderr().lock();
+            let _ = write!(err, "{}", diags.render_with(&handler, map));
+            let plural = |n: usize, w: &str| format!("{n} {w}{}", if n == 1 { "" } else { "s" });
+            let _ = writeln!(
+                err,
+                "checked {}: {}, {}",
+                plural(files, "file"),
+                plural(diags.error_count(), "error"),
+                plural(diags.warning_count(), "warning")
+            );
+        }
+    }
+}
+
+fn terminal_width() -> Option<usize> {
+    std::env::var("COLUMNS").ok().and_then(|c| c.parse().ok())
 }

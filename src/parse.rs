@@ -1,0 +1,43 @@
+//! The RAPID front end: text → [`ast::File`] with spans, plus structural checks.
+//!
+//! [`parse_file`] never panics, never overflows the stack and never fails: it returns the
+//! best AST it can (broken statements and declarations are left out after recovery) and pushes
+//! every problem as a [`ParseError`] into the [`Diagnostics`]. [`check_structure`] adds the
+//! checks that need the whole tree but no types (duplicate names, placeholders).
+//!
+//! pest is used only here: `grammar/*.pest` at the crate root, bound in [`grammar`].
+
+use crate::ast;
+use crate::diag::Diagnostics;
+use crate::source::SourceId;
+
+mod build;
+pub mod error;
+mod grammar;
+mod names;
+mod pratt;
+mod prescan;
+mod recover;
+mod structure;
+
+pub use error::{ParseError, ParseErrorKind};
+
+/// Limit of nested brackets and blocks (checked before pest runs).
+pub const MAX_NESTING: usize = 256;
+/// Limit of the depth of one expression tree (long operator chains nest too).
+pub const MAX_EXPR_DEPTH: usize = 256;
+/// Errors reported per file before the parser stops reporting.
+pub const MAX_ERRORS_PER_FILE: usize = 100;
+
+/// Parse one file. Always returns a (possibly partial) AST; every syntax error, including
+/// `ENDPROC`/`ENDFUNC` mismatches and statements outside routines, goes into `diags`.
+pub fn parse_file(id: SourceId, text: &str, diags: &mut Diagnostics) -> ast::File {
+    build::parse(id, text, diags)
+}
+
+/// Structural checks on a parsed file: duplicate routine, data and type names in a module,
+/// duplicate parameter and data names in a routine, duplicate record components, and a
+/// warning for every placeholder.
+pub fn check_structure(file: &ast::File, diags: &mut Diagnostics) {
+    structure::check(file, diags)
+}

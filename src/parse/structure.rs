@@ -1,0 +1,283 @@
+//! Structural checks that need the whole tree but no types: duplicate names per scope
+//! (module items, routine parameters and data, record components) and placeholder warnings.
+
+use std::collections::HashMap;
+
+use super::error::{ParseError, ParseErrorKind};
+use crate::ast::{
+    Arg, ArgKind, DataDecl, Expr, ExprKind, File, Ident, ModuleItem, Placeholder, Routine, Stmt,
+    StmtKind,
+};
+use crate::diag::Diagnostics;
+use crate::source::Span;
+
+pub(crate) fn check(file: &File, diags: &mut Diagnostics) {
+    let mut c = Checker {
+        diags,
+        file: file.span.source,
+    };
+    for m in &file.modules {
+        let scope = format!("module `{}`", m.name.node);
+        let mut names = Names::default();
+        for item in &m.items {
+            match item {
+                ModuleItem::Record(r) => {
+                    names.add(&mut c, &r.name, &scope);
+                    let rscope = format!("record `{}`", r.name.node);
+                    let mut fields = Names::default();
+                    for f in &r.fields {
+                        fields.add(&mut c, &f.name, &rscope);
+                        c.ident(&f.ty);
+                        c.ident(&f.name);
+                        c.exprs(&f.dims);
+                    }
+                    c.ident(&r.name);
+                }
+                ModuleItem::Alias(a) => {
+                    names.add(&mut c, &a.name, &scope);
+                    c.ident(&a.name);
+                    c.ident(&a.base);
+                }
+                ModuleItem::Data(d) => {
+                    names.add(&mut c, &d.name, &scope);
+                    c.data(d);
+                }
+                ModuleItem::Routine(r) => {
+                    names.add(&mut c, &r.name, &scope);
+                    c.routine(r);
+                }
+                ModuleItem::Placeholder(p) => c.placeholder(p.node, p.span),
+            }
+        }
+    }
+}
+
+struct Checker<'d> {
+    diags: &'d mut Diagnostics,
+    file: crate::source::SourceId,
+}
+
+/// First declaration of each case-folded name in one scope.
+#[derive(Default)]
+struct Names {
+    first: HashMap<String, Span>,
+}
+
+impl Names {
+    fn add(&mut self, c: &mut Checker<'_>, name: &Ident, scope: &str) {
+        if name.node.is_empty() || name.node.starts_with('<') {
+            return;
+        }
+        match self.first.get(&name.folded()) {
+            Some(&first) => c.push(ParseErrorKind::DuplicateName {
+                span: name.span,
+                first,
+                name: name.node.clone(),
+                scope: scope.to_string(),
+            }),
+            None => {
+                self.first.insert(name.folded(), name.span);
+            }
+        }
+    }
+}
+
+impl Checker<'_> {
+    fn push(&mut self, kind: ParseErrorKind) {
+        self.diags.push(ParseError::new(self.file, kind));
+    }
+
+    fn placeholder(&mut self, p: Placeholder, span: Span) {
+        let what = match p {
+            Placeholder::Tdn => "a type definition",
+            Placeholder::Ddn => "a data declaration",
+            Placeholder::Rdn => "a routine declaration",
+            Placeholder::Par => "a parameter",
+            Placeholder::Alt => "an alternative parameter",
+            Placeholder::Dim => "an array dimension",
+            Placeholder::Smt => "a statement",
+            Placeholder::Var => "a data reference",
+            Placeholder::Eit => "an ELSEIF clause",
+            Placeholder::Cse => "a CASE clause",
+            Placeholder::Exp => "an expression",
+            Placeholder::Arg => "an argument",
+            Placeholder::Id => "a name",
+        };
+        self.push(ParseErrorKind::Placeholder {
+            span,
+            text: p.as_str().to_string(),
+            what,
+        });
+    }
+
+    fn ident(&mut self, id: &Ident) {
+        if id.node.starts_with('<') {
+            self.placeholder(Placeholder::Id, id.span);
+        }
+    }
+
+    fn data(&mut self, d: &DataDecl) {
+        self.ident(&d.ty);
+        self.ident(&d.name);
+        self.exprs(&d.dims);
+        if let Some(e) = &d.init {
+            self.expr(e);
+        }
+    }
+
+    fn routine(&mut self, r: &Routine) {
+        self.ident(&r.name);
+        let scope = format!("routine `{}`", r.name.node);
+        let mut names = Names::default();
+        for g in &r.params {
+            for p in &g.alternatives {
+                match p.placeholder {
+                    Some(ph) => self.placeholder(ph, p.span),
+                    None => {
+                        names.add(self, &p.name, &scope);
+                        self.ident(&p.ty);
+                        self.ident(&p.name);
+                    }
+                }
+            }
+        }
+        for d in &r.data {
+            names.add(self, &d.name, &scope);
+            self.data(d);
+        }
+        self.stmts(&r.body);
+        for s in [&r.backward, &r.undo].into_iter().flatten() {
+            self.stmts(s);
+        }
+        if let Some(h) = &r.error {
+            if let Some(e) = &h.errnos {
+                self.exprs(e);
+            }
+            self.stmts(&h.body);
+        }
+    }
+
+    fn stmts(&mut self, stmts: &[Stmt]) {
+        for s in stmts {
+            self.stmt(s);
+        }
+    }
+
+    fn stmt(&mut self, s: &Stmt) {
+        match &s.kind {
+            StmtKind::Assign { target, value } => {
+                self.expr(target);
+                self.expr(value);
+            }
+            StmtKind::Call { name, args } => {
+                self.ident(name);
+                self.args(args);
+            }
+            StmtKind::LateCall { name, args } => {
+                self.expr(name);
+                self.args(args);
+            }
+            StmtKind::If {
+                cond,
+                then_body,
+                elseifs,
+                else_body,
+            } => {
+                self.expr(cond);
+                self.stmts(then_body);
+                for (c, b) in elseifs {
+                    self.expr(c);
+                    self.stmts(b);
+                }
+                if let Some(b) = else_body {
+                    self.stmts(b);
+                }
+            }
+            StmtKind::CompactIf { cond, stmt } => {
+                self.expr(cond);
+                self.stmt(stmt);
+            }
+            StmtKind::While { cond, body } => {
+                self.expr(cond);
+                self.stmts(body);
+            }
+            StmtKind::For {
+                from,
+                to,
+                step,
+                body,
+                ..
+            } => {
+                self.expr(from);
+                self.expr(to);
+                if let Some(s) = step {
+                    self.expr(s);
+                }
+                self.stmts(body);
+            }
+            StmtKind::Test {
+                subject,
+                cases,
+                default,
+            } => {
+                self.expr(subject);
+                for c in cases {
+                    self.exprs(&c.values);
+                    self.stmts(&c.body);
+                }
+                if let Some(b) = default {
+                    self.stmts(b);
+                }
+            }
+            StmtKind::Return(Some(e)) | StmtKind::Raise(Some(e)) => self.expr(e),
+            StmtKind::Connect { target, trap } => {
+                self.expr(target);
+                self.ident(trap);
+            }
+            StmtKind::Placeholder(p) => self.placeholder(*p, s.span),
+            StmtKind::Label(_)
+            | StmtKind::Goto(_)
+            | StmtKind::Return(None)
+            | StmtKind::Raise(None)
+            | StmtKind::Retry
+            | StmtKind::TryNext
+            | StmtKind::Exit => {}
+        }
+    }
+
+    fn args(&mut self, args: &[Arg]) {
+        for a in args {
+            match &a.kind {
+                ArgKind::Positional(e) | ArgKind::Named { value: e, .. } => self.expr(e),
+                ArgKind::Optional { value: Some(e), .. } => self.expr(e),
+                ArgKind::Optional { value: None, .. } | ArgKind::Conditional { .. } => {}
+                ArgKind::Placeholder(p) => self.placeholder(*p, a.span),
+            }
+        }
+    }
+
+    fn exprs(&mut self, es: &[Expr]) {
+        for e in es {
+            self.expr(e);
+        }
+    }
+
+    fn expr(&mut self, e: &Expr) {
+        match &e.kind {
+            ExprKind::Placeholder(p) => self.placeholder(*p, e.span),
+            ExprKind::Component { base, .. } => self.expr(base),
+            ExprKind::Index { base, indices } => {
+                self.expr(base);
+                self.exprs(indices);
+            }
+            ExprKind::Call { args, .. } => self.args(args),
+            ExprKind::Aggregate(items) => self.exprs(items),
+            ExprKind::Unary { expr, .. } | ExprKind::Paren(expr) => self.expr(expr),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                self.expr(lhs);
+                self.expr(rhs);
+            }
+            ExprKind::Num(_) | ExprKind::Str(_) | ExprKind::Bool(_) | ExprKind::Name(_) => {}
+        }
+    }
+}
