@@ -140,4 +140,127 @@ mod tests {
             "string too long: 81 characters (a RAPID string holds at most 80)"
         );
     }
+
+    /// `(storage, type, name, value)` of every one-line `CONST`/`PERS` declaration.
+    fn decls(text: &str) -> Vec<(String, String, String, format::LitValue)> {
+        let mut out = Vec::new();
+        for line in text.lines().map(str::trim) {
+            if !(line.starts_with("CONST ") || line.starts_with("PERS ")) {
+                continue;
+            }
+            let (head, value) = line.split_once(":=").expect("declaration with :=");
+            let words: Vec<&str> = head.split_whitespace().collect();
+            let value = value.trim().strip_suffix(';').expect("ends with ;");
+            let parsed = format::parse_value(value)
+                .unwrap_or_else(|| panic!("value of {line:?} does not parse"));
+            out.push((
+                words[0].to_string(),
+                words[1].to_string(),
+                words[2].to_string(),
+                parsed,
+            ));
+        }
+        out
+    }
+
+    fn nums(v: &format::LitValue) -> Vec<f64> {
+        v.as_list()
+            .unwrap()
+            .iter()
+            .filter_map(|c| c.as_dnum())
+            .collect()
+    }
+
+    #[test]
+    fn stdlib_files() {
+        let files = [
+            include_str!("../stdlib/base.sys"),
+            include_str!("../stdlib/speed.sys"),
+            include_str!("../stdlib/zone.sys"),
+            include_str!("../stdlib/egm.sys"),
+            include_str!("../stdlib/misc.sys"),
+        ];
+        for f in files {
+            assert!(f.starts_with("MODULE "), "{f}");
+            assert!(f.contains("(SYSMODULE, NOSTEPIN, READONLY)"));
+            assert!(f.trim_end().ends_with("ENDMODULE"));
+        }
+
+        let base = decls(files[0]);
+        assert_eq!(base.len(), 3);
+        assert!(base.iter().all(|d| d.0 == "PERS"));
+        let tool0 = &base[0];
+        assert_eq!((tool0.1.as_str(), tool0.2.as_str()), ("tooldata", "tool0"));
+        assert_eq!(
+            format::parse_value("[TRUE,[[0,0,0],[1,0,0,0]],[0.001,[0,0,0.001],[1,0,0,0],0,0,0]]"),
+            Some(tool0.3.clone())
+        );
+        assert_eq!(base[1].2, "wobj0");
+        assert_eq!(base[2].2, "load0");
+
+        let speeds = decls(files[1]);
+        assert_eq!(speeds.len(), 26);
+        for (storage, ty, name, value) in &speeds {
+            assert_eq!((storage.as_str(), ty.as_str()), ("CONST", "speeddata"));
+            let v = nums(value);
+            let tcp = if name == "vmax" {
+                7000.0
+            } else {
+                name[1..].parse::<f64>().unwrap()
+            };
+            assert_eq!(v, vec![tcp, 500.0, 5000.0, 1000.0], "{name}");
+        }
+
+        let zones = decls(files[2]);
+        assert_eq!(zones.len(), 15);
+        assert_eq!(zones[0].2, "fine");
+        assert_eq!(zones[0].3.as_list().unwrap()[0].as_bool(), Some(true));
+        for (_, ty, name, value) in zones.iter().skip(1) {
+            assert_eq!(ty, "zonedata");
+            assert_eq!(value.as_list().unwrap()[0].as_bool(), Some(false));
+            let v = nums(value);
+            let tcp = if name == "z0" {
+                0.3
+            } else {
+                name[1..].parse::<f64>().unwrap()
+            };
+            assert_eq!(v[0], tcp, "{name}");
+            // pzone_ori = pzone_eax = zone_leax = 1.5 × pzone_tcp (rounded), zone_ori =
+            // zone_reax = pzone_ori / 10, in every row of the reference table.
+            assert_eq!(v[1], v[2]);
+            assert_eq!(v[1], v[4]);
+            assert_eq!(v[3], v[5]);
+            assert!((v[1] - (1.5 * tcp).round().max(tcp)).abs() <= 1.0, "{name}");
+            assert!((v[3] - v[1] / 10.0).abs() < 0.6, "{name}");
+        }
+
+        let egm = decls(files[3]);
+        let value = |n: &str| {
+            egm.iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap()
+        };
+        assert!(value("EGM_STATE_DISCONNECTED") < value("EGM_STATE_CONNECTED"));
+        assert!(value("EGM_STATE_CONNECTED") < value("EGM_STATE_RUNNING"));
+        assert_eq!(value("EGM_CORR_RUNNING"), 3.0);
+        assert_eq!(value("EGM_STOP_HOLD"), 1.0);
+        assert_eq!(value("EGM_FRAME_JOINT"), 5.0);
+        for alias in ["egmstate", "egmstopmode", "egmframetype", "egmcorrstate"] {
+            assert!(files[3].contains(&format!("ALIAS num {alias};")));
+        }
+
+        let misc = decls(files[4]);
+        let text = |n: &str| {
+            misc.iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_str().map(str::to_string))
+                .unwrap()
+        };
+        assert_eq!(text("STR_DIGIT"), string::STR_DIGIT);
+        assert_eq!(text("STR_UPPER"), string::STR_UPPER);
+        assert_eq!(text("STR_LOWER"), string::STR_LOWER);
+        assert_eq!(text("STR_WHITE"), string::STR_WHITE);
+        assert_eq!(text("stEmpty"), "");
+    }
 }
