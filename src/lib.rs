@@ -15,5 +15,6 @@ pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod diag;
+pub mod io;
 pub mod rtlib;
 pub mod source;
