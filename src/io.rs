@@ -25,7 +25,7 @@
 mod signal;
 mod table;
 
-pub use signal::{SignalDef, SignalKind, builtin_signals, merge_defs};
+pub use signal::{MAX_GROUP_BITS, SignalDef, SignalKind, builtin_signals, merge_defs};
 pub use table::{SignalId, SignalTable};
 
 /// An error from the signal table.

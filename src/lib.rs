@@ -14,6 +14,7 @@
 pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod config;
 pub mod diag;
 pub mod io;
 pub mod rtlib;
