@@ -14,10 +14,13 @@
 pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod config;
 pub mod diag;
 pub mod interp;
+pub mod io;
 pub mod ir;
 pub mod load;
 pub mod parse;
+pub mod rtlib;
 pub mod sema;
 pub mod source;
