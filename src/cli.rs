@@ -7,6 +7,9 @@ use clap::{Parser, Subcommand};
 
 mod check;
 mod dump_ast;
+pub mod program;
+mod render;
+mod run;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -22,6 +25,8 @@ pub struct Cli {
 pub enum Command {
     /// Check RAPID files or directories for syntax and semantic errors.
     Check(check::CheckArgs),
+    /// Run a RAPID program on the virtual controller (TP output on stdout).
+    Run(run::RunArgs),
     /// Print the syntax tree of one file (for debugging the parser).
     #[command(hide = true)]
     DumpAst(dump_ast::DumpAstArgs),
@@ -32,5 +37,6 @@ pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
+        Command::Run(args) => run::run(args),
     }
 }

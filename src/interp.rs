@@ -17,13 +17,14 @@
 
 pub mod builtins;
 mod call;
-pub mod error;
 pub mod errnum;
+pub mod error;
 mod expr;
 pub mod host;
 mod interrupts;
 pub mod pers;
 mod place;
+pub mod stdlib;
 mod stmt;
 pub mod value;
 
@@ -284,39 +285,67 @@ impl Interp {
         }
     }
 
-    /// Current values of all persistents: (name, type name, value).
-    pub fn persistents(&self) -> Vec<(String, String, Value)> {
+    /// Current values of the program's persistents (the stdlib's are not included).
+    pub fn persistents(&self) -> Vec<pers::PersValue> {
         self.prog
             .globals
             .iter()
             .enumerate()
             .filter(|(_, g)| g.storage == Storage::Pers)
+            .filter(|(_, g)| match g.origin {
+                GlobalOrigin::Module(m) => !self.prog.modules[m.0 as usize].stdlib,
+                _ => false,
+            })
             .filter_map(|(i, g)| {
-                Some((
-                    g.name.clone(),
-                    self.prog.types.display(g.ty),
-                    self.globals.get(i)?.clone(),
-                ))
+                let mut ty = self.prog.types.name(g.ty.base).to_string();
+                if !g.dims.is_empty() {
+                    let d: Vec<String> = g.dims.iter().map(|n| n.to_string()).collect();
+                    ty = format!("{ty}{{{}}}", d.join(","));
+                }
+                Some(pers::PersValue {
+                    name: g.name.clone(),
+                    ty,
+                    task: g.task,
+                    value: self.globals.get(i)?.clone(),
+                })
             })
             .collect()
     }
 
-    /// Set a persistent by (case-insensitive) name; false when there is none or the value
-    /// does not fit its type.
-    pub fn set_persistent(&mut self, name: &str, v: Value) -> bool {
-        let Some(i) = self.prog.globals.iter().position(|g| {
-            g.storage == Storage::Pers && g.name.eq_ignore_ascii_case(name)
-        }) else {
-            return false;
-        };
-        let Some(slot) = self.globals.get_mut(i) else {
-            return false;
-        };
-        if !pers::same_shape(slot, &v) {
-            return false;
+    /// Overwrite persistents with stored values (after [`Interp::init`]). Returns the
+    /// entries the program does not declare (to keep them) and warnings for entries whose
+    /// value does not fit the declared type (the program's value is kept for those).
+    pub fn load_persistents(
+        &mut self,
+        entries: &[pers::PersEntry],
+    ) -> (Vec<pers::PersEntry>, Vec<String>) {
+        let mut unknown = Vec::new();
+        let mut warnings = Vec::new();
+        for e in entries {
+            let idx = self.prog.globals.iter().position(|g| {
+                g.storage == Storage::Pers
+                    && g.name.eq_ignore_ascii_case(&e.name)
+                    && matches!(g.origin, GlobalOrigin::Module(m)
+                        if !self.prog.modules[m.0 as usize].stdlib)
+            });
+            let Some(i) = idx else {
+                unknown.push(e.clone());
+                continue;
+            };
+            let Some(slot) = self.globals.get_mut(i) else {
+                continue;
+            };
+            let mut v = slot.clone();
+            if pers::fill(&mut v, &e.value) {
+                *slot = v;
+            } else {
+                warnings.push(format!(
+                    "stored value of persistent `{}` does not fit its declaration; the declared value is used",
+                    e.name
+                ));
+            }
         }
-        *slot = v;
-        true
+        (unknown, warnings)
     }
 
     /// Recompute when the per-statement slow path must run.
@@ -350,7 +379,11 @@ impl Interp {
     ) -> Box<RuntimeError> {
         let mut stack = Vec::with_capacity(self.frames.len());
         for (k, f) in self.frames.iter().enumerate().rev() {
-            let at = if k + 1 == self.frames.len() { span } else { f.at };
+            let at = if k + 1 == self.frames.len() {
+                span
+            } else {
+                f.at
+            };
             stack.push(StackEntry {
                 routine: self.prog.routine(f.routine).name.clone(),
                 span: at,
@@ -362,6 +395,14 @@ impl Interp {
             span,
             stack,
         })
+    }
+
+    /// A runtime-library failure as the RAPID error it names.
+    fn rt_error(&self, e: crate::rtlib::RtError, span: Span) -> Unwind {
+        match errnum::by_name(e.err_name()) {
+            Some(d) => self.error(d.num, span, e.to_string()),
+            None => self.fatal(ErrorKind::Host, span, e.to_string()),
+        }
     }
 
     fn host_error(&self, e: HostError, span: Span) -> Unwind {

@@ -20,13 +20,13 @@ use std::sync::Arc;
 
 use crate::ast;
 use crate::diag::Diagnostics;
+pub use crate::io::SignalKind;
 use crate::ir::{
-    Global, GlobalId, ModuleId, ModuleInfo, NativeId, NativeSig, Program, Routine, RoutineId,
-    Ty, TypeTable,
+    Global, GlobalId, ModuleId, ModuleInfo, NativeId, NativeSig, Program, Routine, RoutineId, Ty,
+    TypeTable,
 };
 use crate::source::Span;
 pub use error::{SemaError, SemaErrorKind};
-pub use predef::SignalKind;
 
 /// What the program's surroundings define: I/O signals and mechanical units.
 #[derive(Clone, Debug)]
@@ -35,6 +35,19 @@ pub struct Env {
     pub signals: Vec<(String, SignalKind)>,
     /// Mechanical units (`ROB_1`).
     pub mecunits: Vec<String>,
+}
+
+impl Env {
+    /// The signals of a signal table and the default mechanical unit.
+    pub fn from_signals(table: &crate::io::SignalTable) -> Self {
+        Env {
+            signals: table
+                .iter()
+                .map(|(_, d)| (d.name.clone(), d.kind))
+                .collect(),
+            ..Env::default()
+        }
+    }
 }
 
 impl Default for Env {
@@ -208,9 +221,7 @@ impl<'a> Checker<'a> {
     }
 
     fn is_stdlib(&self, m: ModuleId) -> bool {
-        self.modules
-            .get(m.0 as usize)
-            .is_some_and(|mi| mi.stdlib)
+        self.modules.get(m.0 as usize).is_some_and(|mi| mi.stdlib)
     }
 
     fn ty_name(&self, ty: Ty) -> String {

@@ -80,8 +80,16 @@ pub fn run(args: CheckArgs) -> ExitCode {
     }
     match depth {
         Depth::Syntax => {}
-        // The semantic pass (names, types, signatures over all `parsed` files) runs here.
-        Depth::Full => {}
+        // The semantic pass (names, types, signatures over all `parsed` files), once the
+        // files parse: the configuration next to them gives the I/O signals.
+        Depth::Full => {
+            if !diags.has_errors() && !io_failed {
+                let dir = super::program::config_dir(None, &args.paths);
+                let signals = super::program::load_signals(dir.as_deref(), &mut map, &mut diags);
+                let registry = crate::interp::Registry::standard();
+                super::program::check(&parsed, &mut map, &signals, &registry, &mut diags);
+            }
+        }
     }
     diags.sort();
     report(&diags, &map, args.format, files.len());

@@ -6,8 +6,11 @@ mod clock;
 mod core;
 mod interrupts;
 mod io;
+mod math;
 mod motion;
-
+mod pose;
+mod string;
+mod text;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -15,7 +18,7 @@ use std::sync::Arc;
 use super::errnum;
 use super::error::{ErrorKind, Exec, Unwind};
 use super::host::Host;
-use super::value::{Value, MAX_STRING};
+use super::value::{MAX_STRING, Value};
 use super::{Interp, NArg};
 use crate::ir::{NativeId, NativeSig, Program};
 use crate::source::Span;
@@ -60,6 +63,10 @@ impl Registry {
     pub fn standard() -> Self {
         let mut r = Registry::empty();
         core::register(&mut r);
+        text::register(&mut r);
+        math::register(&mut r);
+        string::register(&mut r);
+        pose::register(&mut r);
 
         clock::register(&mut r);
         io::register(&mut r);
@@ -125,6 +132,11 @@ impl Registry {
             })
             .collect()
     }
+}
+
+/// Overwrite a value with a parsed literal of the same shape (StrToVal, persistents).
+pub(crate) fn fill_literal(target: &mut Value, lit: &crate::rtlib::format::LitValue) -> bool {
+    text::fill(target, lit)
 }
 
 fn missing(cx: &mut Ctx<'_>) -> Exec<Value> {
@@ -288,6 +300,18 @@ impl<'a> Ctx<'a> {
             format!("`{}` is not yet supported by rapidvc ({why})", self.name())
         };
         self.it.fatal(ErrorKind::Unsupported, self.span, msg)
+    }
+
+    /// A runtime-library failure as the RAPID error it names.
+    pub fn rt(&self, e: crate::rtlib::RtError) -> Unwind {
+        self.it.rt_error(e, self.span)
+    }
+
+    /// A `num` result computed in f64 (rounded to single precision, range-checked).
+    pub fn num_result(&self, x: f64) -> Exec<Value> {
+        crate::rtlib::math::num_from_f64(x)
+            .map(Value::Num)
+            .map_err(|e| self.rt(e))
     }
 
     /// The host.

@@ -5,7 +5,7 @@ use super::builtins::Ctx;
 use super::errnum;
 use super::error::{ErrorKind, Exec, Unwind};
 use super::place::AbsPlace;
-use super::value::{default_value, Value};
+use super::value::{Value, default_value};
 use super::{Frame, Interp, NArg};
 use crate::ir::{Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId, RoutineKind};
 use crate::source::Span;
@@ -277,7 +277,13 @@ impl Interp {
             let idx = match &a.name {
                 Some(n) => r.params.iter().position(|q| q.name.eq_ignore_ascii_case(n)),
                 None => {
-                    let i = r.params.iter().enumerate().skip(next_req).find(|(_, q)| !q.optional).map(|(i, _)| i);
+                    let i = r
+                        .params
+                        .iter()
+                        .enumerate()
+                        .skip(next_req)
+                        .find(|(_, q)| !q.optional)
+                        .map(|(i, _)| i);
                     if let Some(i) = i {
                         next_req = i + 1;
                     }

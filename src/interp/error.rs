@@ -85,7 +85,7 @@ impl RuntimeError {
                     .unwrap_or("Error raised by the program");
                 format!("{}: {}", errnum::describe(n), text)
             }
-            ErrorKind::Unsupported => "not supported".into(),
+            ErrorKind::Unsupported => "not supported by rapidvc".into(),
             ErrorKind::Placeholder => "placeholder reached".into(),
             ErrorKind::Aborted => "execution aborted".into(),
             ErrorKind::Host => "controller error".into(),
@@ -96,11 +96,10 @@ impl RuntimeError {
 
 impl fmt::Display for RuntimeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.headline())?;
-        if !self.message.is_empty() {
-            write!(f, ": {}", self.message)?;
+        match self.kind {
+            ErrorKind::Rapid(_) => f.write_str(&self.headline()),
+            _ => f.write_str(&self.message),
         }
-        Ok(())
     }
 }
 
@@ -136,10 +135,12 @@ impl Diagnostic for RuntimeError {
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
         let label = match self.kind {
+            _ if !self.message.is_empty() && self.is_recoverable() => self.message.clone(),
             ErrorKind::Rapid(n) => errnum::by_num(n)
                 .map(|e| e.name.to_string())
                 .unwrap_or_else(|| format!("error {n} raised here")),
-            _ => "here".to_string(),
+            ErrorKind::Unsupported | ErrorKind::Placeholder => "here".to_string(),
+            _ => "stopped here".to_string(),
         };
         Some(Box::new(std::iter::once(LabeledSpan::new_with_span(
             Some(label),

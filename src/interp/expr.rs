@@ -3,10 +3,10 @@
 
 use std::sync::Arc;
 
+use super::Interp;
 use super::errnum;
 use super::error::{ErrorKind, Exec};
-use super::value::{values_equal, Array, Value, MAX_STRING};
-use super::Interp;
+use super::value::{Array, MAX_STRING, Value, values_equal};
 use crate::ir::{BinOp, Expr, ExprKind, ParamSlot, Program, UnOp};
 use crate::source::Span;
 
@@ -193,7 +193,11 @@ impl Interp {
         span: Span,
     ) -> Option<Exec<bool>> {
         Some(match op {
-            BinOp::NumLt | BinOp::NumLe | BinOp::NumGt | BinOp::NumGe | BinOp::NumEq
+            BinOp::NumLt
+            | BinOp::NumLe
+            | BinOp::NumGt
+            | BinOp::NumGe
+            | BinOp::NumEq
             | BinOp::NumNe => self.num_cmp(p, op, a, b),
             BinOp::And | BinOp::Or | BinOp::Xor => {
                 // Both operands are always evaluated (no short circuit).

@@ -8,8 +8,11 @@
 //! implementations that report the capability as missing; the motion natives then turn that
 //! into a clear run-time error instead of a silent no-op.
 
-use std::collections::HashMap;
 use std::fmt;
+use std::sync::Arc;
+
+use super::errnum;
+use crate::io::{IoError, SignalTable};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -84,14 +87,17 @@ pub trait Host {
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError>;
 }
 
+/// A callback that receives program output.
+pub type OutputSink = Box<dyn FnMut(&Output) + Send>;
+
 /// A deterministic host: a virtual clock that jumps, output kept in memory (or handed to a
-/// callback), signals in a plain table.
+/// callback), signals in a shared [`SignalTable`].
 pub struct VirtualHost {
     now: f64,
     max_time: Option<f64>,
     outputs: Vec<Output>,
-    sink: Option<Box<dyn FnMut(&Output) + Send>>,
-    signals: HashMap<String, f64>,
+    sink: Option<OutputSink>,
+    signals: Arc<SignalTable>,
 }
 
 impl fmt::Debug for VirtualHost {
@@ -110,15 +116,26 @@ impl Default for VirtualHost {
 }
 
 impl VirtualHost {
-    /// Time 0, no time limit, output kept in memory, no signals.
+    /// Time 0, no time limit, output kept in memory, the built-in signals.
     pub fn new() -> Self {
         VirtualHost {
             now: 0.0,
             max_time: None,
             outputs: Vec::new(),
             sink: None,
-            signals: HashMap::new(),
+            signals: Arc::new(SignalTable::with_builtins()),
         }
+    }
+
+    /// Use this signal table (shared with whoever else reads or drives the signals).
+    pub fn with_signals(mut self, signals: Arc<SignalTable>) -> Self {
+        self.signals = signals;
+        self
+    }
+
+    /// The signal table.
+    pub fn signals(&self) -> &Arc<SignalTable> {
+        &self.signals
     }
 
     /// Fail waits that would pass this virtual time (a guard against programs that wait
@@ -132,11 +149,6 @@ impl VirtualHost {
     pub fn with_sink(mut self, sink: impl FnMut(&Output) + Send + 'static) -> Self {
         self.sink = Some(Box::new(sink));
         self
-    }
-
-    /// Define a signal with its initial value.
-    pub fn define_signal(&mut self, name: &str, value: f64) {
-        self.signals.insert(name.to_ascii_uppercase(), value);
     }
 
     /// Output kept so far (empty when a sink is set).
@@ -189,19 +201,22 @@ impl Host for VirtualHost {
     }
 
     fn read_signal(&mut self, name: &str) -> Result<f64, HostError> {
+        let id = self.signals.lookup_or_err(name).map_err(io_error)?;
         self.signals
-            .get(&name.to_ascii_uppercase())
-            .copied()
-            .ok_or_else(|| HostError::fatal(format!("signal `{name}` is not defined")))
+            .value(id)
+            .ok_or_else(|| HostError::fatal(format!("signal `{name}` has no value")))
     }
 
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError> {
-        match self.signals.get_mut(&name.to_ascii_uppercase()) {
-            Some(v) => {
-                *v = value;
-                Ok(())
-            }
-            None => Err(HostError::fatal(format!("signal `{name}` is not defined"))),
-        }
+        let id = self.signals.lookup_or_err(name).map_err(io_error)?;
+        self.signals.set(id, value).map(drop).map_err(io_error)
+    }
+}
+
+/// A signal-table error as a RAPID error (or a fatal one when it names no RAPID error).
+pub fn io_error(e: IoError) -> HostError {
+    match e.err_name().and_then(errnum::by_name) {
+        Some(d) => HostError::rapid(d.num, e.to_string()),
+        None => HostError::fatal(e.to_string()),
     }
 }

@@ -3,12 +3,15 @@
 
 use std::collections::{HashMap, HashSet, VecDeque};
 
+use super::Interp;
 use super::errnum;
 use super::error::{Exec, Unwind};
 use super::value::Value;
-use super::Interp;
 use crate::ir::{Place, Program, RoutineId};
 use crate::source::Span;
+
+/// A condition a wait polls.
+pub(crate) type WaitCond<'a> = dyn FnMut(&mut Interp, &Program) -> Exec<bool> + 'a;
 
 /// Most interrupt numbers in use at once.
 pub(crate) const MAX_INTERRUPTS: usize = 100;
@@ -107,13 +110,13 @@ impl Interrupts {
 /// Does an analog value satisfy an `aiotrigg` condition?
 fn analog_hit(cond: u8, high: f64, low: f64, v: f64) -> bool {
     match cond {
-        1 => v > high,             // AIO_ABOVE_HIGH
-        2 => v < high,             // AIO_BELOW_HIGH
-        3 => v > low,              // AIO_ABOVE_LOW
-        4 => v < low,              // AIO_BELOW_LOW
+        1 => v > high,              // AIO_ABOVE_HIGH
+        2 => v < high,              // AIO_BELOW_HIGH
+        3 => v > low,               // AIO_ABOVE_LOW
+        4 => v < low,               // AIO_BELOW_LOW
         5 => v >= low && v <= high, // AIO_BETWEEN
-        6 => v < low || v > high,  // AIO_OUTSIDE
-        _ => true,                 // AIO_ALWAYS
+        6 => v < low || v > high,   // AIO_OUTSIDE
+        _ => true,                  // AIO_ALWAYS
     }
 }
 
@@ -161,7 +164,13 @@ impl Interp {
     }
 
     /// Order a timer interrupt.
-    pub(crate) fn order_timer(&mut self, no: i32, period: f64, single: bool, span: Span) -> Exec<()> {
+    pub(crate) fn order_timer(
+        &mut self,
+        no: i32,
+        period: f64,
+        single: bool,
+        span: Span,
+    ) -> Exec<()> {
         self.check_intno(no, span)?;
         let now = self.host.now();
         self.ints.timers.retain(|t| t.intno != no);
@@ -271,8 +280,9 @@ impl Interp {
                     }
                     Trigger::Analog { cond, high, low } => {
                         v != w.last
-                            && (cond == 7 || (analog_hit(cond, high, low, v)
-                                && !analog_hit(cond, high, low, w.last)))
+                            && (cond == 7
+                                || (analog_hit(cond, high, low, v)
+                                    && !analog_hit(cond, high, low, w.last)))
                     }
                 };
                 w.last = v;
@@ -327,7 +337,7 @@ impl Interp {
         p: &Program,
         span: Span,
         deadline: Option<f64>,
-        mut cond: Option<&mut dyn FnMut(&mut Interp, &Program) -> Exec<bool>>,
+        mut cond: Option<&mut WaitCond<'_>>,
         poll: f64,
     ) -> Exec<bool> {
         if let Some(f) = self.frames.last_mut() {
@@ -354,11 +364,7 @@ impl Interp {
                 wake = wake.min(t.max(now));
             }
             if !wake.is_finite() {
-                return Err(self.fatal(
-                    super::ErrorKind::Host,
-                    span,
-                    "this wait can never end",
-                ));
+                return Err(self.fatal(super::ErrorKind::Host, span, "this wait can never end"));
             }
             self.host
                 .wait_until(wake)

@@ -10,18 +10,7 @@ use std::fmt::Write as _;
 use super::value::{Array, Value};
 use crate::ir::{Ty, TypeKind, TypeTable};
 
-/// A literal value in a persistents file.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Lit {
-    /// A number.
-    Num(f64),
-    /// A string.
-    Str(String),
-    /// TRUE / FALSE.
-    Bool(bool),
-    /// `[a, b, …]`.
-    List(Vec<Lit>),
-}
+pub use crate::rtlib::format::LitValue as Lit;
 
 /// One `PERS type name := value;` line.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,6 +21,42 @@ pub struct PersEntry {
     pub name: String,
     /// The value.
     pub value: Lit,
+    /// The line as written (kept for entries the program does not declare).
+    pub raw: String,
+}
+
+/// A persistent of the running program, for saving.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PersValue {
+    /// Name as declared.
+    pub name: String,
+    /// Type as written in a declaration (`num`, `robtarget{*}` for arrays).
+    pub ty: String,
+    /// `TASK PERS`.
+    pub task: bool,
+    /// Current value.
+    pub value: Value,
+}
+
+/// The text of a persistents file: a header comment, then one line per persistent, then the
+/// kept lines of entries the program does not declare.
+pub fn write(values: &[PersValue], kept: &[PersEntry]) -> String {
+    let mut s = String::from("! rapidvc persistents: PERS data saved at the end of a run\n");
+    for v in values {
+        let _ = writeln!(
+            s,
+            "{}PERS {} {} := {};",
+            if v.task { "TASK " } else { "" },
+            v.ty,
+            v.name,
+            to_text(&v.value)
+        );
+    }
+    for k in kept {
+        s.push_str(&k.raw);
+        s.push('\n');
+    }
+    s
 }
 
 /// A parse error in a persistents file.
@@ -44,7 +69,8 @@ pub struct PersError {
     pub message: String,
 }
 
-/// Parse a persistents file. Blank lines and `!` comments are ignored.
+/// Parse a persistents file. Blank lines and `!` comments are ignored; values are RAPID
+/// literals (numbers, strings, TRUE/FALSE, aggregates), read like `StrToVal` reads them.
 pub fn parse(text: &str) -> Result<Vec<PersEntry>, PersError> {
     let mut out = Vec::new();
     for (i, raw) in text.lines().enumerate() {
@@ -57,31 +83,24 @@ pub fn parse(text: &str) -> Result<Vec<PersEntry>, PersError> {
             message: m.to_string(),
         };
         let rest = strip_kw(line, "TASK").unwrap_or(line);
-        let rest = strip_kw(rest, "PERS").ok_or_else(|| err("expected `PERS type name := value;`"))?;
-        let (decl, val) = rest
-            .split_once(":=")
-            .ok_or_else(|| err("expected `:=`"))?;
+        let rest =
+            strip_kw(rest, "PERS").ok_or_else(|| err("expected `PERS type name := value;`"))?;
+        let (decl, val) = rest.split_once(":=").ok_or_else(|| err("expected `:=`"))?;
         let mut words = decl.split_whitespace();
         let (Some(ty), Some(name), None) = (words.next(), words.next(), words.next()) else {
             return Err(err("expected a type and a name before `:=`"));
         };
-        let val = val.trim();
         let val = val
+            .trim()
             .strip_suffix(';')
             .ok_or_else(|| err("expected `;` at the end of the line"))?;
-        let mut p = LitParser {
-            s: val.as_bytes(),
-            i: 0,
-        };
-        let value = p.lit().map_err(|m| err(&m))?;
-        p.ws();
-        if p.i != p.s.len() {
-            return Err(err("unexpected text after the value"));
-        }
+        let value = crate::rtlib::format::parse_value(val)
+            .ok_or_else(|| err("the value is not a RAPID literal or aggregate"))?;
         out.push(PersEntry {
             ty: ty.to_string(),
             name: name.to_string(),
             value,
+            raw: line.to_string(),
         });
     }
     Ok(out)
@@ -89,155 +108,17 @@ pub fn parse(text: &str) -> Result<Vec<PersEntry>, PersError> {
 
 fn strip_kw<'a>(s: &'a str, kw: &str) -> Option<&'a str> {
     let head = s.get(..kw.len())?;
-    if head.eq_ignore_ascii_case(kw) && s[kw.len()..].starts_with(char::is_whitespace) {
-        Some(s[kw.len()..].trim_start())
+    let tail = s.get(kw.len()..)?;
+    if head.eq_ignore_ascii_case(kw) && tail.starts_with(char::is_whitespace) {
+        Some(tail.trim_start())
     } else {
         None
     }
 }
 
-struct LitParser<'a> {
-    s: &'a [u8],
-    i: usize,
-}
-
-impl LitParser<'_> {
-    fn ws(&mut self) {
-        while self.i < self.s.len() && self.s[self.i].is_ascii_whitespace() {
-            self.i += 1;
-        }
-    }
-
-    fn lit(&mut self) -> Result<Lit, String> {
-        self.ws();
-        match self.s.get(self.i) {
-            Some(b'[') => {
-                self.i += 1;
-                let mut items = Vec::new();
-                self.ws();
-                if self.s.get(self.i) == Some(&b']') {
-                    self.i += 1;
-                    return Ok(Lit::List(items));
-                }
-                loop {
-                    items.push(self.lit()?);
-                    self.ws();
-                    match self.s.get(self.i) {
-                        Some(b',') => self.i += 1,
-                        Some(b']') => {
-                            self.i += 1;
-                            return Ok(Lit::List(items));
-                        }
-                        _ => return Err("expected `,` or `]`".into()),
-                    }
-                }
-            }
-            Some(b'"') => {
-                self.i += 1;
-                let mut bytes = Vec::new();
-                loop {
-                    match self.s.get(self.i) {
-                        None => return Err("unterminated string".into()),
-                        Some(b'"') if self.s.get(self.i + 1) == Some(&b'"') => {
-                            bytes.push(b'"');
-                            self.i += 2;
-                        }
-                        Some(b'"') => {
-                            self.i += 1;
-                            break;
-                        }
-                        Some(b'\\') if self.s.get(self.i + 1) == Some(&b'\\') => {
-                            bytes.push(b'\\');
-                            self.i += 2;
-                        }
-                        Some(b'\\') => {
-                            let hex = self
-                                .s
-                                .get(self.i + 1..self.i + 3)
-                                .and_then(|h| std::str::from_utf8(h).ok())
-                                .and_then(|h| u8::from_str_radix(h, 16).ok())
-                                .ok_or("bad `\\` escape in a string")?;
-                            // Character codes are ISO-8859-1: one char per code.
-                            let mut buf = [0u8; 4];
-                            bytes.extend_from_slice(
-                                char::from(hex).encode_utf8(&mut buf).as_bytes(),
-                            );
-                            self.i += 3;
-                        }
-                        Some(&c) => {
-                            bytes.push(c);
-                            self.i += 1;
-                        }
-                    }
-                }
-                String::from_utf8(bytes)
-                    .map(Lit::Str)
-                    .map_err(|_| "string is not valid UTF-8".into())
-            }
-            Some(_) => {
-                let start = self.i;
-                while self.i < self.s.len() && !matches!(self.s[self.i], b',' | b']' | b' ' | b'\t')
-                {
-                    self.i += 1;
-                }
-                let word = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("");
-                if word.eq_ignore_ascii_case("TRUE") {
-                    Ok(Lit::Bool(true))
-                } else if word.eq_ignore_ascii_case("FALSE") {
-                    Ok(Lit::Bool(false))
-                } else {
-                    word.parse::<f64>()
-                        .map(Lit::Num)
-                        .map_err(|_| format!("`{word}` is not a value"))
-                }
-            }
-            None => Err("missing value".into()),
-        }
-    }
-}
-
-/// Overwrite `target` with a literal of the same shape; false (and `target` unchanged in
-/// part) when the shapes differ.
+/// Overwrite `target` with a literal of the same shape; false when the shapes differ.
 pub fn fill(target: &mut Value, lit: &Lit) -> bool {
-    match (target, lit) {
-        (Value::Num(x), Lit::Num(v)) => {
-            *x = *v as f32;
-            true
-        }
-        (Value::Dnum(x), Lit::Num(v)) => {
-            *x = *v;
-            true
-        }
-        (Value::Bool(x), Lit::Bool(v)) => {
-            *x = *v;
-            true
-        }
-        (Value::Str(x), Lit::Str(v)) => {
-            *x = v.as_str().into();
-            true
-        }
-        (Value::Record(fs), Lit::List(items)) => {
-            fs.len() == items.len() && fs.iter_mut().zip(items).all(|(f, l)| fill(f, l))
-        }
-        (Value::Array(a), Lit::List(_)) => {
-            let mut flat = Vec::new();
-            flatten(lit, a.rank as usize, &mut flat);
-            flat.len() == a.data.len()
-                && a.data.iter_mut().zip(flat).all(|(v, l)| fill(v, l))
-        }
-        _ => false,
-    }
-}
-
-fn flatten<'a>(lit: &'a Lit, depth: usize, out: &mut Vec<&'a Lit>) {
-    match lit {
-        Lit::List(items) if depth > 0 => {
-            for i in items {
-                flatten(i, depth - 1, out);
-            }
-        }
-        other => out.push(other),
-    }
+    super::builtins::fill_literal(target, lit)
 }
 
 /// A value as persistents-file text (RAPID aggregate syntax, exact numbers).
@@ -343,7 +224,10 @@ pub fn fits(types: &TypeTable, ty: Ty, v: &Value) -> bool {
         | (TypeKind::String, Value::Str(_)) => true,
         (TypeKind::Record { fields, .. }, Value::Record(vs)) => {
             fields.len() == vs.len()
-                && fields.iter().zip(vs.iter()).all(|(f, x)| fits(types, f.ty, x))
+                && fields
+                    .iter()
+                    .zip(vs.iter())
+                    .all(|(f, x)| fits(types, f.ty, x))
         }
         _ => false,
     }

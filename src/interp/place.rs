@@ -1,10 +1,10 @@
 //! Places: where a value lives (a frame slot, a global, a path into a record or array), how
 //! reference parameters point at their argument, and reading/writing through them.
 
+use super::Interp;
 use super::errnum;
 use super::error::Exec;
 use super::value::{Array, Value};
-use super::Interp;
 use crate::ir::{PathOp, Place, Program, Root};
 use crate::source::Span;
 

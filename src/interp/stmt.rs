@@ -3,7 +3,7 @@
 
 use super::errnum;
 use super::error::{ErrorKind, Exec, RuntimeError, Unwind};
-use super::value::{values_equal, Value};
+use super::value::{Value, values_equal};
 use super::{HookAction, Interp, StmtEvent};
 use crate::ir::{Block, Program, Stmt, StmtKind};
 use crate::source::Span;

@@ -92,7 +92,9 @@ impl NativeSig {
     /// Parse a signature; `Err` carries a message naming the problem (a bug in the table).
     pub fn parse(text: &str) -> Result<NativeSig, String> {
         let text = text.trim();
-        let open = text.find('(').ok_or_else(|| format!("no `(` in `{text}`"))?;
+        let open = text
+            .find('(')
+            .ok_or_else(|| format!("no `(` in `{text}`"))?;
         if !text.ends_with(')') {
             return Err(format!("no closing `)` in `{text}`"));
         }
@@ -104,14 +106,17 @@ impl NativeSig {
         };
         let body = &text[open + 1..text.len() - 1];
         let mut params = Vec::new();
-        let mut group: u16 = 0;
-        for grp in body.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        for (group, grp) in body
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .enumerate()
+        {
             let optional = grp.starts_with('\\');
             for alt in grp.split('|') {
                 let alt = alt.trim().trim_start_matches('\\');
-                params.push(parse_param(alt, optional, group)?);
+                params.push(parse_param(alt, optional, group as u16)?);
             }
-            group += 1;
         }
         Ok(NativeSig {
             name: name.to_string(),

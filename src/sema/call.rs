@@ -243,9 +243,8 @@ impl Checker<'_> {
                 continue;
             }
             if params[idx].optional
-                && let Some(j) = (0..params.len()).find(|&j| {
-                    j != idx && params[j].group == params[idx].group && out[j].is_some()
-                })
+                && let Some(j) = (0..params.len())
+                    .find(|&j| j != idx && params[j].group == params[idx].group && out[j].is_some())
             {
                 self.err(
                     K::ExclusiveArgs {
@@ -276,12 +275,7 @@ impl Checker<'_> {
         ok.then(|| out.into_iter().map(|a| a.unwrap_or(Arg::Absent)).collect())
     }
 
-    fn optional_index(
-        &mut self,
-        params: &[PView],
-        pn: &ast::Ident,
-        callee: &str,
-    ) -> Option<usize> {
+    fn optional_index(&mut self, params: &[PView], pn: &ast::Ident, callee: &str) -> Option<usize> {
         let found = params
             .iter()
             .position(|p| p.optional && p.name.eq_ignore_ascii_case(&pn.node));
@@ -436,10 +430,7 @@ impl Checker<'_> {
     fn check_exact(&mut self, p: &PView, t: Ty, ctx: &str, span: Span) -> Option<()> {
         let (ok, expected) = match p.ty {
             PTy::T(want) => (want == t, self.ty_name(want)),
-            PTy::Any(0) => (
-                self.types.is_value(t.base),
-                "a value type".to_string(),
-            ),
+            PTy::Any(0) => (self.types.is_value(t.base), "a value type".to_string()),
             PTy::Any(_) => (t.rank > 0, "an array".to_string()),
             PTy::AnyNum => (t == Ty::NUM || t == Ty::DNUM, "num or dnum".to_string()),
             PTy::Switch => (false, "switch".to_string()),
@@ -459,7 +450,6 @@ impl Checker<'_> {
         }
     }
 }
-
 
 fn mode_name(m: ParamMode) -> &'static str {
     match m {

@@ -61,7 +61,9 @@ impl<'a> Checker<'a> {
                 self.type_spans.insert(name.folded(), span);
                 match item {
                     ModuleItem::Alias(a) => {
-                        let id = self.types.add(&a.name.node, TypeKind::Alias(TypeId::NUM), !stdlib);
+                        let id =
+                            self.types
+                                .add(&a.name.node, TypeKind::Alias(TypeId::NUM), !stdlib);
                         aliases.push((id, a));
                     }
                     ModuleItem::Record(r) => {
@@ -184,7 +186,12 @@ impl<'a> Checker<'a> {
             Ty::NUM,
         ));
         for (name, v) in super::predef::AIO_CONSTS {
-            self.add_global(pre(name, GlobalOrigin::NumConst(*v), Storage::Const, Ty::NUM));
+            self.add_global(pre(
+                name,
+                GlobalOrigin::NumConst(*v),
+                Storage::Const,
+                Ty::NUM,
+            ));
         }
         let mec = self.types.lookup("mecunit").unwrap_or(TypeId::NUM);
         for m in &env.mecunits {
@@ -196,7 +203,7 @@ impl<'a> Checker<'a> {
             ));
         }
         for (name, kind) in &env.signals {
-            let ty = self.types.lookup(kind.type_name()).unwrap_or(TypeId::NUM);
+            let ty = self.types.lookup(kind.rapid_type()).unwrap_or(TypeId::NUM);
             self.add_global(pre(
                 name,
                 GlobalOrigin::Signal(name.clone()),

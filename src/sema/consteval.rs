@@ -70,8 +70,7 @@ impl Checker<'_> {
                     if let Some(LocalSym::Data { cval, .. }) = rcx.scope.get(&key) {
                         return *cval;
                     }
-                    if rcx.scope.contains_key(&key) || rcx.for_vars.iter().any(|(n, _)| *n == key)
-                    {
+                    if rcx.scope.contains_key(&key) || rcx.for_vars.iter().any(|(n, _)| *n == key) {
                         return None;
                     }
                 }

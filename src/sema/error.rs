@@ -345,9 +345,8 @@ impl SemaError {
                 "rapidvc::sema::unknown_optional",
                 format!("`\\{name}` is not an optional parameter of `{callee}`"),
                 "unknown optional argument",
-                is_required.then(|| {
-                    format!("`{name}` is a required parameter: pass it without `\\`")
-                }),
+                is_required
+                    .then(|| format!("`{name}` is a required parameter: pass it without `\\`")),
             ),
             K::UnknownNamed { callee, name } => d(
                 "rapidvc::sema::unknown_named",

@@ -437,7 +437,10 @@ impl Checker<'_> {
             AK::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, expect, span),
             AK::Placeholder(ph) => {
                 self.err(K::Placeholder { ph: ph.as_str() }, span);
-                Some((mk(ExprKind::Placeholder(ph.as_str())), expect.unwrap_or(Ty::NUM)))
+                Some((
+                    mk(ExprKind::Placeholder(ph.as_str())),
+                    expect.unwrap_or(Ty::NUM),
+                ))
             }
         }
     }
@@ -513,7 +516,10 @@ impl Checker<'_> {
         expect: Option<Ty>,
         span: Span,
     ) -> Option<(Expr, Ty)> {
-        let arith = matches!(op, AB::Add | AB::Sub | AB::Mul | AB::Div | AB::IntDiv | AB::Mod);
+        let arith = matches!(
+            op,
+            AB::Add | AB::Sub | AB::Mul | AB::Div | AB::IntDiv | AB::Mod
+        );
         let hint = if arith && expect == Some(Ty::DNUM) {
             Some(Ty::DNUM)
         } else {
@@ -547,7 +553,10 @@ impl Checker<'_> {
         };
         let num_dnum = |nop: BinOp, dop: BinOp, res_bool: bool| -> Option<(Expr, Ty)> {
             if both_num {
-                Some((bin(nop, l.clone(), r.clone()), if res_bool { Ty::BOOL } else { Ty::NUM }))
+                Some((
+                    bin(nop, l.clone(), r.clone()),
+                    if res_bool { Ty::BOOL } else { Ty::NUM },
+                ))
             } else if mixed_numeric || (lt == Ty::DNUM && rt == Ty::DNUM) {
                 Some((
                     bin(dop, to_d(l.clone(), lt), to_d(r.clone(), rt)),

@@ -1,8 +1,8 @@
 //! The order in which module data are initialised: each initial value after the data it
 //! reads, with cycles reported.
 
-use super::error::SemaErrorKind as K;
 use super::Checker;
+use super::error::SemaErrorKind as K;
 use crate::ir::GlobalId;
 
 impl Checker<'_> {
@@ -20,7 +20,11 @@ impl Checker<'_> {
             let mut stack: Vec<(usize, usize)> = vec![(start, 0)];
             state[start] = 1;
             while let Some(&mut (node, ref mut next)) = stack.last_mut() {
-                let deps = self.init_deps.get(node).map(|d| d.as_slice()).unwrap_or(&[]);
+                let deps = self
+                    .init_deps
+                    .get(node)
+                    .map(|d| d.as_slice())
+                    .unwrap_or(&[]);
                 if let Some(&dep) = deps.get(*next) {
                     *next += 1;
                     let d = dep.0 as usize;

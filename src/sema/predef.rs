@@ -13,7 +13,12 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
     ("pose", &[("trans", "pos"), ("rot", "orient")]),
     (
         "confdata",
-        &[("cf1", "num"), ("cf4", "num"), ("cf6", "num"), ("cfx", "num")],
+        &[
+            ("cf1", "num"),
+            ("cf4", "num"),
+            ("cf6", "num"),
+            ("cfx", "num"),
+        ],
     ),
     (
         "robjoint",
@@ -46,7 +51,10 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
             ("extax", "extjoint"),
         ],
     ),
-    ("jointtarget", &[("robax", "robjoint"), ("extax", "extjoint")]),
+    (
+        "jointtarget",
+        &[("robax", "robjoint"), ("extax", "extjoint")],
+    ),
     (
         "loaddata",
         &[
@@ -60,7 +68,11 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
     ),
     (
         "tooldata",
-        &[("robhold", "bool"), ("tframe", "pose"), ("tload", "loaddata")],
+        &[
+            ("robhold", "bool"),
+            ("tframe", "pose"),
+            ("tload", "loaddata"),
+        ],
     ),
     (
         "wobjdata",
@@ -167,35 +179,4 @@ fn add_record(t: &mut TypeTable, name: &str, fields: &[(&str, &str)], value: boo
         })
         .collect();
     t.add(name, TypeKind::Record { fields, value }, false);
-}
-
-/// I/O signal kinds, as configured in EIO.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum SignalKind {
-    /// Digital input.
-    Di,
-    /// Digital output.
-    Do,
-    /// Analog input.
-    Ai,
-    /// Analog output.
-    Ao,
-    /// Group input.
-    Gi,
-    /// Group output.
-    Go,
-}
-
-impl SignalKind {
-    /// The RAPID data type of a signal of this kind.
-    pub fn type_name(self) -> &'static str {
-        match self {
-            SignalKind::Di => "signaldi",
-            SignalKind::Do => "signaldo",
-            SignalKind::Ai => "signalai",
-            SignalKind::Ao => "signalao",
-            SignalKind::Gi => "signalgi",
-            SignalKind::Go => "signalgo",
-        }
-    }
 }

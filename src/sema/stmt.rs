@@ -6,10 +6,8 @@ use std::collections::HashMap;
 use super::error::SemaErrorKind as K;
 use super::expr::{Obj, PlaceRes};
 use super::{Checker, LocalSym, RoutineCx};
-use crate::ast::{self, ArgKind, ExprKind as AK, ParamMode, Storage, StmtKind as S};
-use crate::ir::{
-    Block, Handler, LateArg, LocalDecl, RoutineId, RoutineKind, Stmt, StmtKind, Ty,
-};
+use crate::ast::{self, ArgKind, ExprKind as AK, ParamMode, StmtKind as S, Storage};
+use crate::ir::{Block, Handler, LateArg, LocalDecl, RoutineId, RoutineKind, Stmt, StmtKind, Ty};
 
 impl<'a> Checker<'a> {
     /// Lower the initial values of module data (in their module's scope).
@@ -479,7 +477,8 @@ impl<'a> Checker<'a> {
                 return None;
             }
             PlaceRes::NotPlace => {
-                let readonly = matches!(&target.kind, AK::Name(id) if id.is("ERRNO") || id.is("INTNO"));
+                let readonly =
+                    matches!(&target.kind, AK::Name(id) if id.is("ERRNO") || id.is("INTNO"));
                 if readonly {
                     let name = match &target.kind {
                         AK::Name(id) => id.node.clone(),
@@ -759,4 +758,3 @@ fn terminates(stmts: &[ast::Stmt]) -> bool {
         _ => false,
     }
 }
-

@@ -36,18 +36,29 @@ pub(super) fn register(r: &mut Registry) {
         }
         Ok(Value::Absent)
     });
-    r.add(r"FUNC num ClkRead(VAR clock Clock, \switch HighRes)", |cx| {
-        let (running, start, acc) = state(cx)?;
-        let t = if running { acc + (cx.now() - start) } else { acc };
-        if t > CLOCK_MAX {
-            return Err(cx.error(
-                errnum::ERR_OVERFLOW,
-                format!("the clock ran longer than {CLOCK_MAX} s"),
-            ));
-        }
-        let t = if cx.present(1) { t } else { (t * 1000.0).round() / 1000.0 };
-        Ok(Value::Num(t as f32))
-    });
+    r.add(
+        r"FUNC num ClkRead(VAR clock Clock, \switch HighRes)",
+        |cx| {
+            let (running, start, acc) = state(cx)?;
+            let t = if running {
+                acc + (cx.now() - start)
+            } else {
+                acc
+            };
+            if t > CLOCK_MAX {
+                return Err(cx.error(
+                    errnum::ERR_OVERFLOW,
+                    format!("the clock ran longer than {CLOCK_MAX} s"),
+                ));
+            }
+            let t = if cx.present(1) {
+                t
+            } else {
+                (t * 1000.0).round() / 1000.0
+            };
+            Ok(Value::Num(t as f32))
+        },
+    );
 }
 
 fn clock(running: bool, start: f64, acc: f64) -> Value {

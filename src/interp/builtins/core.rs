@@ -26,7 +26,9 @@ pub(super) fn register(r: &mut Registry) {
     });
     r.add("FUNC num Dim(REF anytype ArrPar{*}, num DimNo)", dim);
     r.add("PROC BookErrNo(VAR errnum ErrorName)", book_err_no);
-    r.add(r"PROC Stop(\switch NoRegain | switch AllMoveTasks)", |_| Err(Unwind::Stop));
+    r.add(r"PROC Stop(\switch NoRegain | switch AllMoveTasks)", |_| {
+        Err(Unwind::Stop)
+    });
     r.add("PROC ExitCycle()", |_| Err(Unwind::ExitCycle));
     r.add(r"PROC WaitTime(\switch InPos, num Time)", wait_time);
     r.add(
@@ -45,7 +47,10 @@ fn add_to(cx: &mut Ctx<'_>, d: f64) -> Exec<Value> {
         Value::Num(x) => {
             let r = *x + d as f32;
             if !r.is_finite() {
-                return Err(cx.error(errnum::ERR_NUM_LIMIT, "the result is outside the range of num"));
+                return Err(cx.error(
+                    errnum::ERR_NUM_LIMIT,
+                    "the result is outside the range of num",
+                ));
             }
             Value::Num(r)
         }
@@ -77,10 +82,7 @@ fn book_err_no(cx: &mut Ctx<'_>) -> Exec<Value> {
         return Ok(Value::Absent);
     }
     if cx.it.next_booked > errnum::BOOK_LAST {
-        return Err(cx.error(
-            errnum::ERR_ARGVALERR,
-            "no more error numbers can be booked",
-        ));
+        return Err(cx.error(errnum::ERR_ARGVALERR, "no more error numbers can be booked"));
     }
     let n = cx.it.next_booked;
     cx.it.next_booked += 1;
@@ -90,8 +92,11 @@ fn book_err_no(cx: &mut Ctx<'_>) -> Exec<Value> {
 
 fn wait_time(cx: &mut Ctx<'_>) -> Exec<Value> {
     let t = cx.f64(1)?;
-    if !(t >= 0.0) || !t.is_finite() {
-        return Err(cx.error(errnum::ERR_ARGVALERR, format!("WaitTime {t}: the time must be 0 or more")));
+    if t.is_nan() || t < 0.0 || !t.is_finite() {
+        return Err(cx.error(
+            errnum::ERR_ARGVALERR,
+            format!("WaitTime {t}: the time must be 0 or more"),
+        ));
     }
     let deadline = cx.now() + t;
     let (p, span) = (cx.p, cx.span);
@@ -113,7 +118,8 @@ fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
     } else {
         match cond_expr {
             Some(e) => {
-                let mut f = |it: &mut crate::interp::Interp, p: &crate::ir::Program| it.eval_bool(p, e);
+                let mut f =
+                    |it: &mut crate::interp::Interp, p: &crate::ir::Program| it.eval_bool(p, e);
                 cx.it.wait(p, span, deadline, Some(&mut f), poll)?
             }
             None => false,
@@ -125,7 +131,10 @@ fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
         } else {
             return Err(cx.error(
                 errnum::ERR_WAIT_MAXTIME,
-                format!("the condition did not become true within {} s", max.unwrap_or(0.0)),
+                format!(
+                    "the condition did not become true within {} s",
+                    max.unwrap_or(0.0)
+                ),
             ));
         }
     } else if cx.present(3) {
@@ -160,9 +169,7 @@ fn assert(cx: &mut Ctx<'_>) -> Exec<Value> {
     } else {
         "assertion failed".to_string()
     };
-    Err(cx.it.fatal(
-        crate::interp::ErrorKind::Assertion,
-        cx.span,
-        msg,
-    ))
+    Err(cx
+        .it
+        .fatal(crate::interp::ErrorKind::Assertion, cx.span, msg))
 }

@@ -39,7 +39,7 @@ pub(super) fn register(r: &mut Registry) {
         |cx| {
             let single = cx.present(0) || cx.present(1);
             let t = cx.f64(2)?;
-            if !(t >= 0.01) {
+            if t.is_nan() || t < 0.01 {
                 return Err(cx.error(
                     errnum::ERR_ARGVALERR,
                     format!("ITimer time {t} s is below the minimum of 0.01 s"),
@@ -104,6 +104,7 @@ fn signal_digital(cx: &mut Ctx<'_>) -> Exec<Value> {
     }
     let no = intno(cx, 4)?;
     let span = cx.span;
-    cx.it.order_watch(no, &name, Trigger::Edge(t as u8), single, span)?;
+    cx.it
+        .order_watch(no, &name, Trigger::Edge(t as u8), single, span)?;
     Ok(Value::Absent)
 }

@@ -17,8 +17,12 @@ pub(super) fn register(r: &mut Registry) {
         r"PROC SetDO(\num SDelay | switch Sync, VAR signaldo Signal, dionum Value)",
         |cx| set_digital(cx, 2, 1),
     );
-    r.add(r"PROC Set(VAR signaldo Signal, \switch Sync)", |cx| write(cx, 0, 1.0));
-    r.add(r"PROC Reset(VAR signaldo Signal, \switch Sync)", |cx| write(cx, 0, 0.0));
+    r.add(r"PROC Set(VAR signaldo Signal, \switch Sync)", |cx| {
+        write(cx, 0, 1.0)
+    });
+    r.add(r"PROC Reset(VAR signaldo Signal, \switch Sync)", |cx| {
+        write(cx, 0, 0.0)
+    });
     r.add(r"PROC SetAO(VAR signalao Signal, num Value)", |cx| {
         let v = cx.f64(1)?;
         write(cx, 0, v)
@@ -84,7 +88,9 @@ fn read(cx: &mut Ctx<'_>) -> Exec<Value> {
 
 fn write(cx: &mut Ctx<'_>, sig: usize, v: f64) -> Exec<Value> {
     let name = signal_name(cx, sig)?;
-    cx.host().write_signal(&name, v).map_err(|e| cx.host_err(e))?;
+    cx.host()
+        .write_signal(&name, v)
+        .map_err(|e| cx.host_err(e))?;
     Ok(Value::Absent)
 }
 
@@ -133,7 +139,9 @@ fn pulse_do(cx: &mut Ctx<'_>) -> Exec<Value> {
     } else {
         (0.0, 1.0)
     };
-    cx.host().write_signal(&name, on).map_err(|e| cx.host_err(e))?;
+    cx.host()
+        .write_signal(&name, on)
+        .map_err(|e| cx.host_err(e))?;
     let at = cx.now() + len;
     cx.it.schedule_write(at, name, after);
     Ok(Value::Absent)

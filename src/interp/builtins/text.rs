@@ -1,0 +1,147 @@
+//! Text output and conversion: `TPWrite`, `TPErase`, `ValToStr`, `NumToStr`, `DnumToStr`,
+//! `StrToVal`, with the number formatting of [`crate::rtlib::format`].
+
+use super::{Ctx, Registry};
+use crate::interp::errnum;
+use crate::interp::error::Exec;
+use crate::interp::host::Output;
+use crate::interp::value::{MAX_STRING, Value};
+use crate::rtlib::format as f;
+
+/// Register this domain.
+pub(super) fn register(r: &mut Registry) {
+    r.add(
+        r"PROC TPWrite(string String, \num Num | dnum Dnum | bool Bool | pos Pos | orient Orient)",
+        tp_write,
+    );
+    r.add("PROC TPErase()", |cx| {
+        cx.host().output(Output::TpErase);
+        Ok(Value::Absent)
+    });
+    r.add("FUNC string ValToStr(anytype Val)", |cx| {
+        let s = val_to_str(cx.value(0)?);
+        cx.string(s)
+    });
+    r.add(
+        r"FUNC string NumToStr(num Val, num Dec, \switch Exp)",
+        |cx| {
+            let dec = cx.int(1, "Dec")?.clamp(-1, 99) as i32;
+            let s = f::num_to_str(cx.num(0)?, dec, cx.present(2)).map_err(|e| cx.rt(e))?;
+            cx.string(s)
+        },
+    );
+    r.add(
+        r"FUNC string DnumToStr(dnum Val, num Dec, \switch Exp)",
+        |cx| {
+            let dec = cx.int(1, "Dec")?.clamp(-1, 99) as i32;
+            let s = f::dnum_to_str(cx.f64(0)?, dec, cx.present(2)).map_err(|e| cx.rt(e))?;
+            cx.string(s)
+        },
+    );
+    r.add("FUNC bool StrToVal(string Str, VAR anytype Val)", |cx| {
+        let Some(lit) = f::parse_value(cx.str(0)?) else {
+            return Ok(Value::Bool(false));
+        };
+        let mut v = cx.value(1)?.clone();
+        if !fill(&mut v, &lit) {
+            return Ok(Value::Bool(false));
+        }
+        cx.set(1, v)?;
+        Ok(Value::Bool(true))
+    });
+}
+
+fn tp_write(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let mut s = cx.str(0)?.to_string();
+    if cx.present(1) {
+        s.push_str(&f::format_num(cx.num(1)?));
+    } else if cx.present(2) {
+        s.push_str(&f::format_dnum(cx.f64(2)?));
+    } else if cx.present(3) {
+        s.push_str(f::format_bool(cx.bool(3)?));
+    } else if cx.present(4) {
+        s.push_str(&val_to_str(cx.value(4)?));
+    } else if cx.present(5) {
+        s.push_str(&val_to_str(cx.value(5)?));
+    }
+    let n = s.chars().count();
+    if n > MAX_STRING {
+        return Err(cx.error(
+            errnum::ERR_STRTOOLNG,
+            format!("TPWrite text of {n} characters (at most {MAX_STRING})"),
+        ));
+    }
+    cx.host().output(Output::TpWrite(s));
+    Ok(Value::Absent)
+}
+
+/// A value as ValToStr writes it.
+pub(crate) fn val_to_str(v: &Value) -> String {
+    match v {
+        Value::Num(x) => f::format_num(*x),
+        Value::Dnum(x) => f::format_dnum(*x),
+        Value::Bool(b) => f::format_bool(*b).to_string(),
+        Value::Str(s) => f::quote_string(s),
+        Value::Record(fs) => f::format_list(fs.iter().map(val_to_str)),
+        Value::Array(a) => f::format_list(a.data.iter().map(val_to_str)),
+        Value::Absent => String::new(),
+    }
+}
+
+/// Overwrite `target` with a parsed literal of the same shape (StrToVal); false when the
+/// shapes or ranges differ.
+pub(crate) fn fill(target: &mut Value, lit: &f::LitValue) -> bool {
+    match target {
+        Value::Num(x) => match lit.as_num() {
+            Some(v) => {
+                *x = v;
+                true
+            }
+            None => false,
+        },
+        Value::Dnum(x) => match lit.as_dnum() {
+            Some(v) => {
+                *x = v;
+                true
+            }
+            None => false,
+        },
+        Value::Bool(x) => match lit.as_bool() {
+            Some(v) => {
+                *x = v;
+                true
+            }
+            None => false,
+        },
+        Value::Str(x) => match lit.as_str() {
+            Some(v) if v.chars().count() <= MAX_STRING => {
+                *x = v.into();
+                true
+            }
+            _ => false,
+        },
+        Value::Record(fs) => match lit.as_list() {
+            Some(items) if items.len() == fs.len() => {
+                fs.iter_mut().zip(items).all(|(f, l)| fill(f, l))
+            }
+            _ => false,
+        },
+        Value::Array(a) => {
+            let mut flat = Vec::new();
+            flatten(lit, a.rank as usize, &mut flat);
+            flat.len() == a.data.len() && a.data.iter_mut().zip(flat).all(|(v, l)| fill(v, l))
+        }
+        Value::Absent => false,
+    }
+}
+
+fn flatten<'a>(lit: &'a f::LitValue, depth: usize, out: &mut Vec<&'a f::LitValue>) {
+    match lit.as_list() {
+        Some(items) if depth > 0 => {
+            for i in items {
+                flatten(i, depth - 1, out);
+            }
+        }
+        _ => out.push(lit),
+    }
+}

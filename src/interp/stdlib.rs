@@ -1,0 +1,12 @@
+//! The embedded stdlib: RAPID system modules with the predefined data (`stdlib/*.sys`),
+//! loaded before the user's modules. Natives and built-in types live in `builtins` and
+//! `sema`; the two halves meet in the program loader.
+
+/// (display name, text) of every stdlib module, in load order.
+pub const SOURCES: &[(&str, &str)] = &[
+    ("<stdlib>/base.sys", include_str!("../../stdlib/base.sys")),
+    ("<stdlib>/speed.sys", include_str!("../../stdlib/speed.sys")),
+    ("<stdlib>/zone.sys", include_str!("../../stdlib/zone.sys")),
+    ("<stdlib>/egm.sys", include_str!("../../stdlib/egm.sys")),
+    ("<stdlib>/misc.sys", include_str!("../../stdlib/misc.sys")),
+];
