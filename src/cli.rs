@@ -10,6 +10,7 @@ mod dump_ast;
 pub mod program;
 mod render;
 mod run;
+mod test;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -27,6 +28,8 @@ pub enum Command {
     Check(check::CheckArgs),
     /// Run a RAPID program on the virtual controller (TP output on stdout).
     Run(run::RunArgs),
+    /// Run every `PROC test_*` of RAPID test modules (`Assert cond \Msg:="…"`).
+    Test(test::TestArgs),
     /// Print the syntax tree of one file (for debugging the parser).
     #[command(hide = true)]
     DumpAst(dump_ast::DumpAstArgs),
@@ -38,5 +41,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
         Command::Run(args) => run::run(args),
+        Command::Test(args) => test::run(args),
     }
 }

@@ -413,6 +413,8 @@ pub enum ExprKind {
     Load(Box<Place>),
     /// A component of a computed record (`CRobT().trans`).
     Field(Box<Expr>, u16),
+    /// The current value of an I/O signal used as a number (`di1 = 1`).
+    SignalValue(Box<Expr>),
     /// The system variable `ERRNO`.
     Errno,
     /// The system variable `INTNO`.

@@ -41,6 +41,24 @@ impl Interp {
                 }
                 other => Err(self.type_bug(e.span, "record", &other)),
             },
+            ExprKind::SignalValue(sig) => {
+                let v = self.eval(p, sig)?;
+                let name = match v.fields() {
+                    Some([Value::Str(s)]) if !s.is_empty() => s.clone(),
+                    _ => {
+                        return Err(self.error(
+                            errnum::ERR_NO_ALIASIO_DEF,
+                            e.span,
+                            "the signal variable is not connected to a configured signal",
+                        ));
+                    }
+                };
+                let x = self
+                    .host
+                    .read_signal(&name)
+                    .map_err(|h| self.host_error(h, e.span))?;
+                Ok(Value::Num(x as f32))
+            }
             ExprKind::Errno => Ok(Value::Num(self.errno as f32)),
             ExprKind::Intno => Ok(Value::Num(self.intno as f32)),
             ExprKind::Present(slot) => Ok(Value::Bool(self.param_present(*slot))),

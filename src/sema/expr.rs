@@ -330,6 +330,14 @@ impl Checker<'_> {
         if from == to {
             return Some(x);
         }
+        let (x, from) = if to.rank == 0 && matches!(to.base, TypeId::NUM | TypeId::DNUM) {
+            self.signal_value(x, from)
+        } else {
+            (x, from)
+        };
+        if from == to {
+            return Some(x);
+        }
         if from.rank == 0 && to.rank == 0 {
             match (from.base, to.base) {
                 (TypeId::NUM, TypeId::DNUM) => {
@@ -460,6 +468,27 @@ impl Checker<'_> {
         (Expr { kind, span }, info.ty)
     }
 
+    /// A signal used where a value is needed reads the signal (`IF di1 = 1`).
+    pub(super) fn signal_value(&self, x: Expr, t: Ty) -> (Expr, Ty) {
+        let is_signal = t.rank == 0
+            && matches!(
+                self.types.name(t.base).to_ascii_lowercase().as_str(),
+                "signaldi" | "signaldo" | "signalai" | "signalao" | "signalgi" | "signalgo"
+            );
+        if is_signal {
+            let span = x.span;
+            (
+                Expr {
+                    kind: ExprKind::SignalValue(Box::new(x)),
+                    span,
+                },
+                Ty::NUM,
+            )
+        } else {
+            (x, t)
+        }
+    }
+
     fn is_pos(&self, t: Ty) -> bool {
         t.rank == 0 && Some(t.base) == self.types.lookup("pos")
     }
@@ -477,6 +506,7 @@ impl Checker<'_> {
     ) -> Option<(Expr, Ty)> {
         let hint = if op == UnaryOp::Not { None } else { expect };
         let (v, t) = self.rvalue(x, hint, None)?;
+        let (v, t) = self.signal_value(v, t);
         let wrap = |op, v| Expr {
             kind: ExprKind::Unary(op, Box::new(v)),
             span,
@@ -525,9 +555,21 @@ impl Checker<'_> {
         } else {
             None
         };
-        let l = self.rvalue(lhs, hint, None);
-        let r = self.rvalue(rhs, hint, None);
-        let ((mut l, mut lt), (mut r, mut rt)) = (l?, r?);
+        // An aggregate operand takes its type from the other operand (`p = [1, 2, 3]`).
+        let is_agg = |e: &ast::Expr| matches!(e.kind, AK::Aggregate(_));
+        let (l, r) = if is_agg(rhs) && !is_agg(lhs) {
+            let l = self.rvalue(lhs, hint, None);
+            let want = l.as_ref().map(|x| x.1);
+            (l, self.rvalue(rhs, want, None))
+        } else if is_agg(lhs) && !is_agg(rhs) {
+            let r = self.rvalue(rhs, hint, None);
+            let want = r.as_ref().map(|x| x.1);
+            (self.rvalue(lhs, want, None), r)
+        } else {
+            (self.rvalue(lhs, hint, None), self.rvalue(rhs, hint, None))
+        };
+        let ((l, lt), (r, rt)) = (l?, r?);
+        let ((mut l, mut lt), (mut r, mut rt)) = (self.signal_value(l, lt), self.signal_value(r, rt));
         // A num literal next to a dnum operand is read as dnum (no single-precision rounding).
         if lt == Ty::DNUM && rt == Ty::NUM && is_literal(rhs) {
             (r, rt) = self.rvalue(rhs, Some(Ty::DNUM), None)?;

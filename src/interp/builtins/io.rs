@@ -15,7 +15,7 @@ const PULSE_LENGTH: f64 = 0.2;
 pub(super) fn register(r: &mut Registry) {
     r.add(
         r"PROC SetDO(\num SDelay | switch Sync, VAR signaldo Signal, dionum Value)",
-        |cx| set_digital(cx, 2, 1),
+        |cx| set_digital(cx, 3, 2),
     );
     r.add(r"PROC Set(VAR signaldo Signal, \switch Sync)", |cx| {
         write(cx, 0, 1.0)
@@ -37,7 +37,7 @@ pub(super) fn register(r: &mut Registry) {
                     format!("{v} is not a valid group output value"),
                 ));
             }
-            delayed_write(cx, 0, 1, v)
+            delayed_write(cx, 1, 0, v)
         },
     );
     r.add(

@@ -1,0 +1,130 @@
+//! `rapidvc test PATH…`: run every `PROC test_*` of the given RAPID files. Each file is a
+//! program of its own (with the stdlib); each test starts from freshly initialised data, on
+//! a virtual controller. A test passes when its procedure returns (or ends with EXIT); it
+//! fails on an unhandled error, a failed `Assert`, or `Stop`. One line per test, the
+//! failures' details, then `N passed, N failed`. Exit code 1 when a test failed, 2 when a
+//! file cannot be loaded or checked.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::{Arc, Mutex};
+
+use super::{program, render};
+use crate::interp::{Interp, Outcome, Output, VirtualHost};
+use crate::io::SignalTable;
+use crate::ir::RoutineKind;
+use crate::load;
+
+/// Arguments of `rapidvc test`.
+#[derive(Debug, clap::Args)]
+pub struct TestArgs {
+    /// RAPID files or directories holding test modules.
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Only run tests whose name contains this text (case-insensitive).
+    #[arg(long)]
+    pub filter: Option<String>,
+    /// Abort a test after this many executed statements.
+    #[arg(long, default_value_t = 50_000_000)]
+    pub max_steps: u64,
+}
+
+/// Run the tests.
+pub fn run(args: TestArgs) -> ExitCode {
+    let files = match load::find_rapid_files(&args.paths) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let (mut passed, mut failed) = (0usize, 0usize);
+    let mut broken = false;
+    for file in &files {
+        let loaded = program::load(std::slice::from_ref(file), None);
+        let Some(prog) = loaded.program.clone() else {
+            render::diagnostics(&loaded.diags, &loaded.sources);
+            println!("test {} ... could not be loaded", file.display());
+            broken = true;
+            continue;
+        };
+        let mut tests: Vec<(String, crate::ir::RoutineId)> = prog
+            .routines
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| {
+                r.kind == RoutineKind::Proc
+                    && r.name.to_ascii_lowercase().starts_with("test_")
+                    && r.params.iter().all(|p| p.optional)
+                    && !prog.modules[r.module.0 as usize].stdlib
+            })
+            .map(|(i, r)| (r.name.clone(), crate::ir::RoutineId(i as u32)))
+            .collect();
+        tests.sort_by_key(|(_, rid)| prog.routine(*rid).span.start);
+        for (name, _) in tests {
+            if let Some(f) = &args.filter
+                && !name.to_ascii_lowercase().contains(&f.to_ascii_lowercase())
+            {
+                continue;
+            }
+            let tp = Arc::new(Mutex::new(Vec::<String>::new()));
+            let sink_tp = tp.clone();
+            let signals = SignalTable::new(loaded.signals.iter().map(|(_, d)| d.clone()).collect())
+                .unwrap_or_else(|_| SignalTable::with_builtins());
+            let host = VirtualHost::new()
+                .with_signals(Arc::new(signals))
+                .with_max_time(86_400.0)
+                .with_sink(move |o| {
+                    if let (Output::TpWrite(s), Ok(mut v)) = (o, sink_tp.lock()) {
+                        v.push(s.clone());
+                    }
+                });
+            let mut it = Interp::new(prog.clone(), &loaded.registry, Box::new(host));
+            it.set_budget(Some(args.max_steps));
+            let res = it.init().and_then(|_| it.run(&name));
+            let label = format!("test {} :: {name}", file.display());
+            match res {
+                Ok(Outcome::Completed | Outcome::Exited | Outcome::ExitCycle) => {
+                    println!("{label} ... ok");
+                    passed += 1;
+                }
+                Ok(Outcome::Stopped) => {
+                    println!("{label} ... FAILED (stopped by Stop)");
+                    failed += 1;
+                }
+                Err(e) => {
+                    println!("{label} ... FAILED");
+                    println!(
+                        "    {}: {}",
+                        loaded.sources.location(e.span),
+                        failure_text(&e)
+                    );
+                    if let Ok(lines) = tp.lock() {
+                        for l in lines.iter() {
+                            println!("    | {l}");
+                        }
+                    }
+                    failed += 1;
+                }
+            }
+        }
+    }
+    println!("{passed} passed, {failed} failed");
+    if broken {
+        ExitCode::from(2)
+    } else if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn failure_text(e: &crate::interp::RuntimeError) -> String {
+    match e.kind {
+        crate::interp::ErrorKind::Assertion => format!("assertion failed: {}", e.message),
+        crate::interp::ErrorKind::Rapid(_) if !e.message.is_empty() => {
+            format!("{e}: {}", e.message)
+        }
+        _ => e.to_string(),
+    }
+}

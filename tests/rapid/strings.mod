@@ -1,0 +1,79 @@
+MODULE strings
+  PROC test_concat_and_len()
+    VAR string s := "abc";
+    s := s + "def";
+    Assert s = "abcdef";
+    Assert StrLen(s) = 6;
+    Assert StrLen("") = 0;
+    Assert "a""b" = "a" + """" + "b" \Msg:="doubled quotes";
+    Assert StrLen("\41\\") = 2 \Msg:="character codes and backslashes";
+  ENDPROC
+
+  PROC test_80_characters()
+    VAR string s := "0123456789012345678901234567890123456789";
+    s := s + s;
+    Assert StrLen(s) = 80;
+    s := s + "x";
+    Assert FALSE \Msg:="not reached";
+  ERROR
+    Assert ERRNO = ERR_STRTOOLNG;
+    Assert StrLen(s) = 80;
+  ENDPROC
+
+  PROC test_search_functions()
+    Assert StrPart("robotics", 3, 3) = "bot";
+    Assert StrFind("a,b;c", 1, ",;") = 2;
+    Assert StrFind("abc", 1, "xyz") = 4 \Msg:="not found: length + 1";
+    Assert StrFind("aab", 1, "a" \NotInSet) = 3;
+    Assert StrMatch("hello world", 1, "wor") = 7;
+    Assert StrMemb("a1", 2, STR_DIGIT);
+    Assert StrMap("abc", "abc", "xyz") = "xyz";
+  ENDPROC
+
+  PROC test_strpart_out_of_bounds()
+    VAR string s;
+    s := StrPart("abc", 2, 5);
+  ERROR
+    Assert ERRNO = ERR_OUTOFBND;
+  ENDPROC
+
+  PROC test_number_text()
+    Assert NumToStr(0.38521, 3) = "0.385";
+    Assert NumToStr(2, 2) = "2.00";
+    Assert NumToStr(1234.5, 0) = "1235";
+    Assert ValToStr(23) = "23";
+    Assert ValToStr(1.141367) = "1.14137";
+    Assert ValToStr(9E9) = "9E+09";
+    Assert ValToStr(TRUE) = "TRUE";
+  ENDPROC
+
+  PROC test_val_to_str_records()
+    VAR pos p := [1817.3, 905.17, 879.11];
+    VAR orient o := [0.96593, 0, 0.25882, 0];
+    Assert ValToStr(p) = "[1817.3,905.17,879.11]";
+    Assert ValToStr(o) = "[0.96593,0,0.25882,0]";
+    Assert ValToStr("q""x") = """q""""x""" \Msg:="strings come back quoted";
+  ENDPROC
+
+  PROC test_str_to_val()
+    VAR num n;
+    VAR bool b;
+    VAR pos p;
+    VAR string s;
+    Assert StrToVal("3.25", n);
+    Assert n = 3.25;
+    Assert StrToVal("true", b);
+    Assert b;
+    Assert StrToVal("[1,2,3]", p);
+    Assert p.y = 2;
+    Assert NOT StrToVal("abc", n);
+    Assert n = 3.25 \Msg:="a failed conversion leaves the value";
+    Assert StrToVal("""hi""", s);
+    Assert s = "hi";
+  ENDPROC
+
+  PROC test_byte_text()
+    Assert ByteToStr(255 \Hex) = "FF";
+    Assert StrToByte("1010" \Bin) = 10;
+  ENDPROC
+ENDMODULE
