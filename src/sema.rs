@@ -173,6 +173,8 @@ pub(crate) struct Checker<'a> {
     init_deps: Vec<Vec<GlobalId>>,
     const_state: HashMap<u32, consteval::ConstState>,
     pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
+    /// Routines with a placeholder parameter (their body stops the program).
+    incomplete: std::collections::HashSet<usize>,
 }
 
 impl<'a> Checker<'a> {
@@ -204,6 +206,7 @@ impl<'a> Checker<'a> {
             init_deps: Vec::new(),
             const_state: HashMap::new(),
             pending_records: Vec::new(),
+            incomplete: Default::default(),
         }
     }
 

@@ -222,12 +222,6 @@ impl<'a> Checker<'a> {
             for item in &m.items {
                 match item {
                     ModuleItem::Data(d) => self.collect_global(mid, d),
-                    ModuleItem::Placeholder(ph) => self.err(
-                        K::Placeholder {
-                            ph: ph.node.as_str(),
-                        },
-                        ph.span,
-                    ),
                     _ => {}
                 }
             }
@@ -405,8 +399,9 @@ impl<'a> Checker<'a> {
         let mut seen: Vec<String> = Vec::new();
         for (gi, group) in r.params.iter().enumerate() {
             for p in &group.alternatives {
-                if let Some(ph) = p.placeholder {
-                    self.err(K::Placeholder { ph: ph.as_str() }, p.span);
+                if p.placeholder.is_some() {
+                    // The parser already warned; the routine stops the program when called.
+                    self.incomplete.insert(self.routines.len());
                     continue;
                 }
                 let Some(base) = self.resolve_type(&p.ty) else {

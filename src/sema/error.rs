@@ -208,11 +208,6 @@ pub enum SemaErrorKind {
         /// What needed the constant.
         what: &'static str,
     },
-    /// A placeholder left in the program (warning).
-    Placeholder {
-        /// Which one.
-        ph: &'static str,
-    },
     /// Module data whose initial values depend on each other.
     InitCycle {
         /// The name.
@@ -510,15 +505,6 @@ impl SemaError {
                 "not computable before the program runs",
                 None,
             ),
-            K::Placeholder { ph } => Details {
-                warning: true,
-                ..d(
-                    "rapidvc::sema::placeholder",
-                    format!("placeholder {ph} left in the program"),
-                    "running into it stops the program",
-                    None,
-                )
-            },
             K::InitCycle { name } => d(
                 "rapidvc::sema::init_cycle",
                 format!("the initial value of `{name}` depends on itself"),

@@ -206,12 +206,19 @@ impl Checker<'_> {
             }
         };
         if let Some(rcx) = &self.rcx {
-            for k in rcx.scope.keys() {
-                consider(k);
+            for p in &self.routines[rcx.rid.0 as usize].params {
+                consider(&p.name);
             }
         }
-        for k in self.data_syms.keys() {
-            consider(k);
+        let m = self.cur_module;
+        for g in &self.globals {
+            let visible = match g.origin {
+                GlobalOrigin::Module(gm) => !g.local || gm == m,
+                _ => true,
+            };
+            if visible {
+                consider(&g.name);
+            }
         }
         self.err(
             K::Undeclared {
@@ -444,7 +451,7 @@ impl Checker<'_> {
             AK::Unary { op, expr } => self.unary(*op, expr, expect, span),
             AK::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, expect, span),
             AK::Placeholder(ph) => {
-                self.err(K::Placeholder { ph: ph.as_str() }, span);
+                // The parser already warned; running into it stops the program.
                 Some((
                     mk(ExprKind::Placeholder(ph.as_str())),
                     expect.unwrap_or(Ty::NUM),
@@ -835,6 +842,18 @@ impl Checker<'_> {
         args: &[ast::Arg],
         span: Span,
     ) -> Option<(Expr, Ty)> {
+        if args
+            .iter()
+            .any(|a| matches!(a.kind, ast::ArgKind::Placeholder(_)))
+        {
+            return Some((
+                Expr {
+                    kind: ExprKind::Placeholder("<ARG>"),
+                    span,
+                },
+                Ty::NUM,
+            ));
+        }
         let key = name.folded();
         if let Some(rid) = self.lookup_routine(&key) {
             let ret = match self.routines[rid.0 as usize].kind {

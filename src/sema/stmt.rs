@@ -91,7 +91,17 @@ impl<'a> Checker<'a> {
             returns: 0,
         });
         let locals = self.routine_data(&r.data);
-        let body = self.block(&r.body);
+        let body = if self.incomplete.contains(&(rid.0 as usize)) {
+            Block {
+                stmts: vec![Stmt {
+                    kind: StmtKind::Placeholder("<PAR>"),
+                    span: r.head_span,
+                }],
+                labels: Vec::new(),
+            }
+        } else {
+            self.block(&r.body)
+        };
         let error = r.error.as_ref().map(|h| {
             let errnos = h.errnos.as_ref().map(|list| {
                 list.iter()
@@ -461,10 +471,7 @@ impl<'a> Checker<'a> {
             }
             S::Exit => StmtKind::Exit,
             S::Connect { target, trap } => self.connect(target, trap)?,
-            S::Placeholder(ph) => {
-                self.err(K::Placeholder { ph: ph.as_str() }, span);
-                StmtKind::Placeholder(ph.as_str())
-            }
+            S::Placeholder(ph) => StmtKind::Placeholder(ph.as_str()),
         };
         Some(Stmt { kind, span })
     }
@@ -543,6 +550,9 @@ impl<'a> Checker<'a> {
         args: &'a [ast::Arg],
         span: crate::source::Span,
     ) -> Option<StmtKind> {
+        if args.iter().any(|a| matches!(a.kind, ArgKind::Placeholder(_))) {
+            return Some(StmtKind::Placeholder("<ARG>"));
+        }
         let key = name.folded();
         if let Some(rid) = self.lookup_routine(&key) {
             let is = match self.routines[rid.0 as usize].kind {
