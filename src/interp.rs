@@ -81,10 +81,6 @@ pub type StmtHook = Box<dyn FnMut(&StmtEvent<'_>) -> HookAction + Send>;
 #[derive(Debug)]
 struct Frame {
     routine: RoutineId,
-    /// First value slot.
-    bp: usize,
-    /// First reference slot.
-    rbp: usize,
     /// The statement currently executing (for stack traces).
     at: Span,
     /// Inside its ERROR handler: the error being handled.
@@ -111,6 +107,13 @@ pub struct Interp {
     frames: Vec<Frame>,
     idx: Vec<i64>,
     nargs: Vec<NArg>,
+    /// The current frame's first value slot and first reference slot (cached).
+    bp: usize,
+    rbp: usize,
+    /// The value of the last `RETURN`.
+    ret: Value,
+    /// The error behind a NaN of the NaN-signalling `num` path.
+    pending: Option<Unwind>,
     errno: i32,
     intno: i32,
     next_booked: i32,
@@ -147,6 +150,10 @@ impl Interp {
             frames: Vec::with_capacity(64),
             idx: Vec::with_capacity(16),
             nargs: Vec::with_capacity(32),
+            bp: 0,
+            rbp: 0,
+            ret: Value::Absent,
+            pending: None,
             errno: 0,
             intno: 0,
             next_booked: errnum::BOOK_FIRST,
@@ -263,6 +270,7 @@ impl Interp {
         self.frames.clear();
         self.stack.clear();
         self.refs.clear();
+        (self.bp, self.rbp) = (0, 0);
         match res {
             Ok(_) => Ok(Outcome::Completed),
             Err(Unwind::Exit) => Ok(Outcome::Exited),

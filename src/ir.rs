@@ -196,6 +196,9 @@ pub struct Routine {
     pub span: Span,
     /// Header.
     pub head_span: Span,
+    /// The body is a single `RETURN expr` with no routine data, handlers or reference
+    /// parameters (the interpreter calls such functions without a statement loop).
+    pub simple: bool,
 }
 
 /// An `ERROR [(…)]` handler.
@@ -232,6 +235,13 @@ pub struct Stmt {
 pub enum StmtKind {
     /// `place := value`.
     Assign {
+        /// Target.
+        place: Place,
+        /// Value.
+        value: Expr,
+    },
+    /// `place := value` where both are `num` (evaluated without boxing the value).
+    AssignNum {
         /// Target.
         place: Place,
         /// Value.
@@ -425,6 +435,8 @@ pub enum ExprKind {
     Unary(UnOp, Box<Expr>),
     /// Infix operator.
     Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// `num MOD k` or `num DIV k` with a constant integer `k` ≠ 0 (true for MOD).
+    NumModDivK(Box<Expr>, i32, bool),
     /// num → dnum.
     ToDnum(Box<Expr>),
     /// dnum → num.

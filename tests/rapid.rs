@@ -17,7 +17,11 @@ fn rapid_self_tests_pass() {
     );
     let last = stdout.lines().last().unwrap_or("");
     assert!(last.ends_with(" passed, 0 failed"), "{last}");
-    let passed: usize = last.split(' ').next().and_then(|n| n.parse().ok()).unwrap_or(0);
+    let passed: usize = last
+        .split(' ')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0);
     assert!(passed >= 60, "only {passed} RAPID tests ran");
 }
 
@@ -39,7 +43,10 @@ fn failing_tests_are_reported_with_location() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
     assert!(stdout.contains("test_one ... FAILED"), "{stdout}");
-    assert!(stdout.contains("failing.mod:3:5: assertion failed: one is not two"), "{stdout}");
+    assert!(
+        stdout.contains("failing.mod:3:5: assertion failed: one is not two"),
+        "{stdout}"
+    );
     assert!(stdout.contains("test_two ... ok"), "{stdout}");
     assert!(stdout.ends_with("1 passed, 1 failed\n"), "{stdout}");
     let _ = std::fs::remove_dir_all(&dir);

@@ -29,7 +29,10 @@ fn golden_runs() {
             .find_map(|l| l.strip_prefix("! args:"))
             .map(|a| a.split_whitespace().collect())
             .unwrap_or_default();
-        let name = path.file_name().and_then(|n| n.to_str()).expect("file name");
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .expect("file name");
         let mut args = vec!["run"];
         args.extend(extra);
         args.push(name);
@@ -58,8 +61,14 @@ fn persistents_survive_between_runs() {
     }
     let saved = std::fs::read_to_string(&pers).unwrap();
     assert!(saved.contains("PERS num runs := 3;"), "{saved}");
-    assert!(saved.contains("TASK PERS pos last := [4.5,0,0];"), "{saved}");
-    assert!(saved.contains("PERS string note := \"x\"\"\"\"\"\"\";"), "{saved}");
+    assert!(
+        saved.contains("TASK PERS pos last := [4.5,0,0];"),
+        "{saved}"
+    );
+    assert!(
+        saved.contains("PERS string note := \"x\"\"\"\"\"\"\";"),
+        "{saved}"
+    );
     // Entries the program does not declare are kept; a bad file is a clear error.
     std::fs::write(&pers, format!("{saved}PERS num other := 7;\n")).unwrap();
     let (code, _, _) = run_in(&dir, &["run", "count.mod", "--pers", "state.pers"]);

@@ -14,6 +14,105 @@ use crate::source::Span;
 pub(crate) const MAX_DEPTH: usize = 2000;
 
 impl Interp {
+    /// Call a simple function (see [`crate::ir::Routine::simple`]) whose result is a `num`,
+    /// on the NaN-signalling path: no statement loop, no `Value` results.
+    #[inline]
+    pub(crate) fn call_simple_num(
+        &mut self,
+        p: &Program,
+        rid: RoutineId,
+        args: &[Arg],
+        span: Span,
+    ) -> f32 {
+        let r = p.routine(rid);
+        let [
+            crate::ir::Stmt {
+                kind: crate::ir::StmtKind::Return(Some(body)),
+                span: st_span,
+            },
+        ] = r.body.stmts.as_slice()
+        else {
+            return self.call_num_general(p, rid, args, span);
+        };
+        if self.frames.len() >= MAX_DEPTH {
+            return self.call_num_general(p, rid, args, span);
+        }
+        let bp = self.stack.len();
+        // Reserve the frame first and write num arguments in place (nested calls made while
+        // evaluating arguments use the stack above it).
+        for _ in 0..r.n_slots {
+            self.stack.push(Value::Num(0.0));
+        }
+        for (k, (param, arg)) in r.params.iter().zip(args.iter()).enumerate() {
+            match arg {
+                Arg::Value(e) if param.ty == crate::ir::Ty::NUM => {
+                    let x = self.nf(p, e);
+                    if x.is_nan() {
+                        self.stack.truncate(bp);
+                        return x;
+                    }
+                    if let Some(Value::Num(slot)) = self.stack.get_mut(bp + k) {
+                        *slot = x;
+                    }
+                }
+                _ => match self.arg_value(p, arg) {
+                    Ok(v) => {
+                        if let Some(slot) = self.stack.get_mut(bp + k) {
+                            *slot = v;
+                        }
+                    }
+                    Err(u) => {
+                        self.stack.truncate(bp);
+                        self.pending = Some(u);
+                        return f32::NAN;
+                    }
+                },
+            }
+        }
+        if let Some(f) = self.frames.last_mut() {
+            f.at = span;
+        }
+        self.frames.push(Frame {
+            routine: rid,
+            at: *st_span,
+            handling: None,
+        });
+        let saved = (self.bp, self.rbp);
+        self.bp = bp;
+        self.steps += 1;
+        let x = if self.steps >= self.next_poll {
+            match self.poll_at(p, *st_span) {
+                Ok(()) => self.nf(p, body),
+                Err(u) => {
+                    self.pending = Some(u);
+                    f32::NAN
+                }
+            }
+        } else {
+            self.nf(p, body)
+        };
+        (self.bp, self.rbp) = saved;
+        self.frames.pop();
+        self.stack.truncate(bp);
+        x
+    }
+
+    #[inline(never)]
+    fn call_num_general(&mut self, p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> f32 {
+        match self.call_routine(p, rid, args, span) {
+            Ok(Value::Num(x)) => x,
+            Ok(other) => {
+                let u = self.type_bug(span, "num", &other);
+                self.pending = Some(u);
+                f32::NAN
+            }
+            Err(u) => {
+                self.pending = Some(u);
+                f32::NAN
+            }
+        }
+    }
+
     /// Call a user routine with lowered arguments; returns the FUNC result (or `Absent`).
     pub(crate) fn call_routine(
         &mut self,
@@ -42,16 +141,17 @@ impl Interp {
         }
         self.frames.push(Frame {
             routine: rid,
-            bp,
-            rbp,
             at: r.head_span,
             handling: None,
         });
+        let saved = (self.bp, self.rbp);
+        (self.bp, self.rbp) = (bp, rbp);
         let res = match self.init_locals(p, r, bp) {
             Ok(()) => self.exec_block(p, &r.body),
             Err(u) => Err(u),
         };
         let res = self.finish_call(p, r, res);
+        (self.bp, self.rbp) = saved;
         self.frames.pop();
         self.stack.truncate(bp);
         self.refs.truncate(rbp);
@@ -74,7 +174,7 @@ impl Interp {
         Ok(())
     }
 
-    fn arg_value(&mut self, p: &Program, arg: &Arg) -> Exec<Value> {
+    pub(crate) fn arg_value(&mut self, p: &Program, arg: &Arg) -> Exec<Value> {
         match arg {
             Arg::Absent => Ok(Value::Absent),
             Arg::Value(e) => self.eval(p, e),
@@ -110,7 +210,10 @@ impl Interp {
     }
 
     fn init_locals(&mut self, p: &Program, r: &Routine, bp: usize) -> Exec<()> {
-        self.stack.resize(bp + r.n_slots as usize, Value::Num(0.0));
+        let need = bp + r.n_slots as usize;
+        if self.stack.len() < need {
+            self.stack.resize(need, Value::Num(0.0));
+        }
         for l in &r.locals {
             let v = match &l.init {
                 Some(e) => self.eval(p, e)?,
@@ -133,7 +236,8 @@ impl Interp {
                     Ok(Value::Absent)
                 }
             }
-            Err(Unwind::Return(v)) => {
+            Err(Unwind::Return) => {
+                let v = std::mem::replace(&mut self.ret, Value::Absent);
                 if is_func && !v.is_present() {
                     Err(self.fncnoret(r))
                 } else {
@@ -174,7 +278,7 @@ impl Interp {
             f.handling = None;
         }
         match self.exec_block(p, undo) {
-            Ok(()) | Err(Unwind::Return(_)) => Ok(()),
+            Ok(()) | Err(Unwind::Return) => Ok(()),
             Err(Unwind::Error(e) | Unwind::Propagate(e) | Unwind::Fatal(e)) => {
                 Err(Unwind::Fatal(e))
             }

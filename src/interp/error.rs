@@ -6,7 +6,6 @@ use std::fmt;
 use miette::{Diagnostic, LabeledSpan};
 
 use super::errnum;
-use super::value::Value;
 use crate::diag::RapidDiagnostic;
 use crate::source::{SourceId, SourceMap, Span};
 
@@ -164,8 +163,9 @@ pub enum Unwind {
     Propagate(Box<RuntimeError>),
     /// An error no handler may take (unsupported, placeholder, error in a handler or trap).
     Fatal(Box<RuntimeError>),
-    /// `RETURN [value]` (`Value::Absent` for procedures).
-    Return(Value),
+    /// `RETURN [value]`; the value waits in the interpreter's return slot (`Value::Absent`
+    /// for procedures), which keeps this enum two words wide.
+    Return,
     /// `GOTO label`.
     Goto(u32),
     /// `RETRY` in an `ERROR` handler.

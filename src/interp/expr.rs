@@ -73,6 +73,7 @@ impl Interp {
                 }
             },
             ExprKind::Binary(op, a, b) => self.binary(p, *op, a, b, e.span),
+            ExprKind::NumModDivK(..) => Ok(Value::Num(self.eval_num(p, e)?)),
             ExprKind::ToDnum(a) => Ok(Value::Dnum(self.eval_f64(p, a)?)),
             ExprKind::ToNum(a) => {
                 let x = self.eval_f64(p, a)?;
@@ -113,34 +114,187 @@ impl Interp {
     /// Evaluate a `num` expression.
     #[inline]
     pub(crate) fn eval_num(&mut self, p: &Program, e: &Expr) -> Exec<f32> {
-        match &e.kind {
-            ExprKind::Num(x) => return Ok(*x),
-            ExprKind::Local(s) => {
-                let (bp, _) = self.bases();
-                if let Some(Value::Num(x)) = self.stack.get(bp + *s as usize) {
-                    return Ok(*x);
-                }
-            }
-            ExprKind::Global(g) => {
-                if let Some(Value::Num(x)) = self.globals.get(*g as usize) {
-                    return Ok(*x);
-                }
-            }
-            ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
-                return self.num_arith(p, *op, a, b, e.span);
-            }
-            ExprKind::Unary(UnOp::NumNeg, a) => return Ok(-self.eval_num(p, a)?),
-            ExprKind::Load(pl) => {
-                if let Some(x) = self.load_f32(p, pl)? {
-                    return Ok(x);
-                }
-            }
-            _ => {}
+        let x = self.nf(p, e);
+        if x.is_nan() {
+            Err(self.take_pending(e.span))
+        } else {
+            Ok(x)
         }
-        match self.eval(p, e)? {
-            Value::Num(x) => Ok(x),
-            Value::Dnum(x) => self.to_f32(x, e.span),
-            other => Err(self.type_bug(e.span, "num", &other)),
+    }
+
+    /// The error behind a NaN from [`Interp::nf`].
+    #[cold]
+    pub(crate) fn take_pending(&mut self, span: Span) -> super::Unwind {
+        match self.pending.take() {
+            Some(u) => u,
+            None => self.fatal(
+                ErrorKind::Host,
+                span,
+                "internal error: a num computation failed without an error",
+            ),
+        }
+    }
+
+    /// Record an error for the NaN-signalling num path and return NaN.
+    #[cold]
+    fn fail_nf(&mut self, u: super::Unwind) -> f32 {
+        self.pending = Some(u);
+        f32::NAN
+    }
+
+    /// Evaluate a `num` expression without a `Result`: a `num` value is never NaN (every
+    /// operation checks its result), so NaN signals an error, kept in `self.pending`.
+    #[inline]
+    pub(crate) fn nf(&mut self, p: &Program, e: &Expr) -> f32 {
+        match &e.kind {
+            ExprKind::Num(x) => *x,
+            ExprKind::Local(s) => match self.stack.get(self.bp + *s as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => self.nf_slow(p, e),
+            },
+            ExprKind::Global(g) => match self.globals.get(*g as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => self.nf_slow(p, e),
+            },
+            ExprKind::Binary(op, a, b) if is_num_arith(*op) => self.nf_binary(p, *op, a, b, e.span),
+            ExprKind::NumModDivK(a, k, is_mod) => self.nf_mod_k(p, a, *k, *is_mod, e.span),
+            ExprKind::Unary(UnOp::NumNeg, a) => -self.nf(p, a),
+            ExprKind::Load(pl) => self.nf_load(p, pl, e),
+            ExprKind::Call(r, args) if p.routine(*r).simple => self.nf_call(p, *r, args, e.span),
+            _ => self.nf_slow(p, e),
+        }
+    }
+
+    #[inline(never)]
+    fn nf_load(&mut self, p: &Program, pl: &crate::ir::Place, e: &Expr) -> f32 {
+        // `a{i}` of a local or global 1-D array of num, inline.
+        if let [crate::ir::PathOp::Index(es)] = &*pl.path
+            && let [ie] = &**es
+            && let Some(x) = self.num_leaf(ie)
+        {
+            let arr = match pl.root {
+                crate::ir::Root::Local(s) => self.stack.get(self.bp + s as usize),
+                crate::ir::Root::Global(g) => self.globals.get(g as usize),
+                crate::ir::Root::Ref(_) => None,
+            };
+            if let Some(Value::Array(a)) = arr {
+                let i = x as i32;
+                if a.rank == 1
+                    && i as f32 == x
+                    && i >= 1
+                    && i as u32 <= a.dims[0]
+                    && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
+                {
+                    return *v;
+                }
+            }
+        }
+        match self.load_f32(p, pl) {
+            Ok(Some(x)) => x,
+            Ok(None) => self.nf_slow(p, e),
+            Err(u) => self.fail_nf(u),
+        }
+    }
+
+    #[inline(never)]
+    fn nf_call(
+        &mut self,
+        p: &Program,
+        r: crate::ir::RoutineId,
+        args: &[crate::ir::Arg],
+        span: Span,
+    ) -> f32 {
+        self.call_simple_num(p, r, args, span)
+    }
+
+    #[inline(never)]
+    fn nf_slow(&mut self, p: &Program, e: &Expr) -> f32 {
+        match self.eval(p, e) {
+            Ok(Value::Num(x)) => x,
+            Ok(Value::Dnum(x)) => match self.to_f32(x, e.span) {
+                Ok(x) => x,
+                Err(u) => self.fail_nf(u),
+            },
+            Ok(other) => {
+                let u = self.type_bug(e.span, "num", &other);
+                self.fail_nf(u)
+            }
+            Err(u) => self.fail_nf(u),
+        }
+    }
+
+    /// `x MOD k` / `x DIV k` with a constant integer `k` ≠ 0.
+    #[inline]
+    fn nf_mod_k(&mut self, p: &Program, a: &Expr, k: i32, is_mod: bool, span: Span) -> f32 {
+        let x = match self.num_leaf(a) {
+            Some(x) => x,
+            None => self.nf(p, a),
+        };
+        let xi = x as i32;
+        if xi as f32 == x && xi != i32::MIN {
+            return if is_mod { xi % k } else { xi / k } as f32;
+        }
+        if x.is_nan() {
+            return x;
+        }
+        match self.int_div_mod(is_mod, x as f64, k as f64, span) {
+            Ok(r) => r as f32,
+            Err(u) => self.fail_nf(u),
+        }
+    }
+
+    #[inline]
+    fn nf_binary(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> f32 {
+        let x = match self.num_leaf(a) {
+            Some(x) => x,
+            None => self.nf(p, a),
+        };
+        if x.is_nan() {
+            return x;
+        }
+        let y = match self.num_leaf(b) {
+            Some(y) => y,
+            None => self.nf(p, b),
+        };
+        if y.is_nan() {
+            return y;
+        }
+        let r = match op {
+            BinOp::NumAdd => x + y,
+            BinOp::NumSub => x - y,
+            BinOp::NumMul => x * y,
+            BinOp::NumDiv => {
+                if y == 0.0 {
+                    let u = self.error(errnum::ERR_DIVZERO, span, "division by zero");
+                    return self.fail_nf(u);
+                }
+                x / y
+            }
+            _ => {
+                // Fast path: integer operands that fit i32 (every exact num integer does).
+                let (xi, yi) = (x as i32, y as i32);
+                if xi as f32 == x && yi as f32 == y && yi != 0 && xi != i32::MIN {
+                    return if op == BinOp::NumMod {
+                        xi % yi
+                    } else {
+                        xi / yi
+                    } as f32;
+                }
+                match self.int_div_mod(op == BinOp::NumMod, x as f64, y as f64, span) {
+                    Ok(r) => r as f32,
+                    Err(u) => return self.fail_nf(u),
+                }
+            }
+        };
+        if r.is_finite() {
+            r
+        } else {
+            let u = self.error(
+                errnum::ERR_NUM_LIMIT,
+                span,
+                "the result is outside the range of num",
+            );
+            self.fail_nf(u)
         }
     }
 
@@ -241,8 +395,14 @@ impl Interp {
     }
 
     fn num_cmp(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr) -> Exec<bool> {
-        let x = self.eval_num(p, a)?;
-        let y = self.eval_num(p, b)?;
+        let x = self.nf(p, a);
+        if x.is_nan() {
+            return Err(self.take_pending(a.span));
+        }
+        let y = self.nf(p, b);
+        if y.is_nan() {
+            return Err(self.take_pending(b.span));
+        }
         Ok(match op {
             BinOp::NumLt => x < y,
             BinOp::NumLe => x <= y,
@@ -253,52 +413,42 @@ impl Interp {
         })
     }
 
-    #[inline]
-    fn num_arith(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> Exec<f32> {
-        let x = self.eval_num(p, a)?;
-        let y = self.eval_num(p, b)?;
-        let r = match op {
-            BinOp::NumAdd => x + y,
-            BinOp::NumSub => x - y,
-            BinOp::NumMul => x * y,
-            BinOp::NumDiv => {
-                if y == 0.0 {
-                    return Err(self.error(errnum::ERR_DIVZERO, span, "division by zero"));
-                }
-                x / y
-            }
-            BinOp::NumIntDiv | BinOp::NumMod => {
-                let r = self.int_div_mod(op == BinOp::NumMod, x as f64, y as f64, span)?;
-                r as f32
-            }
-            _ => return Err(self.type_bug(span, "num operator", &Value::Absent)),
-        };
-        if !r.is_finite() {
-            return Err(self.error(
-                errnum::ERR_NUM_LIMIT,
-                span,
-                "the result is outside the range of num",
-            ));
+    /// A `num` leaf (constant, local, global) without a call, if `e` is one.
+    #[inline(always)]
+    pub(crate) fn num_leaf(&self, e: &Expr) -> Option<f32> {
+        match &e.kind {
+            ExprKind::Num(x) => Some(*x),
+            ExprKind::Local(s) => match self.stack.get(self.bp + *s as usize) {
+                Some(Value::Num(x)) => Some(*x),
+                _ => None,
+            },
+            ExprKind::Global(g) => match self.globals.get(*g as usize) {
+                Some(Value::Num(x)) => Some(*x),
+                _ => None,
+            },
+            _ => None,
         }
-        Ok(r)
     }
 
+    #[inline]
+    fn num_arith(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> Exec<f32> {
+        let r = self.nf_binary(p, op, a, b, span);
+        if r.is_nan() {
+            Err(self.take_pending(span))
+        } else {
+            Ok(r)
+        }
+    }
+
+    /// DIV/MOD with the runtime library's rules (integer operands, truncation, the sign
+    /// of MOD follows the dividend).
     fn int_div_mod(&self, is_mod: bool, x: f64, y: f64, span: Span) -> Exec<f64> {
-        let what = if is_mod { "MOD" } else { "DIV" };
-        for (v, side) in [(x, "left"), (y, "right")] {
-            if v.fract() != 0.0 || !v.is_finite() {
-                return Err(self.error(
-                    errnum::ERR_NOTINTVAL,
-                    span,
-                    format!("the {side} operand of {what} must be an integer, not {v}"),
-                ));
-            }
-        }
-        if y == 0.0 {
-            return Err(self.error(errnum::ERR_DIVZERO, span, format!("{what} by zero")));
-        }
-        let (xi, yi) = (x as i128, y as i128);
-        Ok(if is_mod { xi % yi } else { xi / yi } as f64)
+        let r = if is_mod {
+            crate::rtlib::math::dnum_mod(x, y)
+        } else {
+            crate::rtlib::math::dnum_int_div(x, y)
+        };
+        r.map_err(|e| self.rt_error(e, span))
     }
 
     fn binary(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> Exec<Value> {

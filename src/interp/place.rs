@@ -115,10 +115,7 @@ impl Interp {
     /// Current frame's (value base, reference base).
     #[inline]
     pub(crate) fn bases(&self) -> (usize, usize) {
-        match self.frames.last() {
-            Some(f) => (f.bp, f.rbp),
-            None => (0, 0),
-        }
+        (self.bp, self.rbp)
     }
 
     pub(crate) fn walk_err(&self, e: WalkErr, span: Span) -> super::Unwind {
@@ -176,16 +173,29 @@ impl Interp {
     }
 
     /// Evaluate an array index: a `num` with an integer value.
+    #[inline(always)]
     pub(crate) fn eval_index(&mut self, p: &Program, e: &crate::ir::Expr) -> Exec<i64> {
+        if let Some(x) = self.num_leaf(e) {
+            let i = x as i32;
+            if i as f32 == x {
+                return Ok(i as i64);
+            }
+        }
+        self.eval_index_slow(p, e)
+    }
+
+    #[inline(never)]
+    fn eval_index_slow(&mut self, p: &Program, e: &crate::ir::Expr) -> Exec<i64> {
         let x = self.eval_f64(p, e)?;
-        if x.fract() != 0.0 || !x.is_finite() {
+        let i = x as i64;
+        if i as f64 != x {
             return Err(self.error(
                 errnum::ERR_NOTINTVAL,
                 e.span,
                 format!("array index {x} is not an integer"),
             ));
         }
-        Ok(x as i64)
+        Ok(i)
     }
 
     /// Evaluate every index of a place onto the index stack; returns the mark to truncate to.
@@ -245,8 +255,50 @@ impl Interp {
         r
     }
 
+    /// The root value of a place (fast paths).
+    #[inline(always)]
+    fn root_ref(&self, root: Root) -> Result<&Value, WalkErr> {
+        match root {
+            Root::Local(s) => self.stack.get(self.bp + s as usize).ok_or(WalkErr::Shape),
+            Root::Global(g) => self.globals.get(g as usize).ok_or(WalkErr::Shape),
+            Root::Ref(k) => {
+                let r = self.refs.get(self.rbp + k as usize).ok_or(WalkErr::Shape)?;
+                self.abs_get(r)
+            }
+        }
+    }
+
+    /// `a{i}` on a 1-D array: the element's offset, or the walk error.
+    #[inline(always)]
+    fn elem1_offset(a: &Array, i: i64) -> Result<usize, WalkErr> {
+        if a.rank == 1 && i >= 1 && i <= a.dims[0] as i64 {
+            Ok((i - 1) as usize)
+        } else {
+            Err(oob(a, &[i]))
+        }
+    }
+
     /// Read a `num` place without copying anything else.
     pub(crate) fn load_f32(&mut self, p: &Program, pl: &Place) -> Exec<Option<f32>> {
+        // Fast path: `a{i}` of a 1-D array.
+        if let [PathOp::Index(es)] = &*pl.path
+            && let [ie] = &**es
+        {
+            let i = self.eval_index(p, ie)?;
+            let r = match self.root_ref(pl.root) {
+                Ok(Value::Array(a)) => match Self::elem1_offset(a, i) {
+                    Ok(o) => match a.data.get(o) {
+                        Some(Value::Num(x)) => return Ok(Some(*x)),
+                        _ => Ok(None),
+                    },
+                    Err(e) => Err(e),
+                },
+                Ok(Value::Absent) => Err(WalkErr::NotPresent),
+                Ok(_) => Err(WalkErr::Shape),
+                Err(e) => Err(e),
+            };
+            return r.map_err(|e| self.walk_err(e, pl.span));
+        }
         let mark = self.push_indices(p, pl)?;
         let r = match self.read_walk(pl, mark) {
             Ok(Value::Num(x)) => Ok(Some(*x)),
@@ -318,8 +370,100 @@ impl Interp {
                 };
             }
         }
-        let ap = self.resolve(p, pl)?;
-        self.store_abs(&ap, v, pl.span)
+        // Fast path: `a{i} := v` on a 1-D local or global array.
+        if let [PathOp::Index(es)] = &*pl.path
+            && let [ie] = &**es
+            && !matches!(pl.root, Root::Ref(_))
+            && !matches!(v, Value::Array(_))
+        {
+            let i = self.eval_index(p, ie)?;
+            let slot = match pl.root {
+                Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
+                _ => match pl.root {
+                    Root::Global(g) => self.globals.get_mut(g as usize),
+                    _ => None,
+                },
+            };
+            let r = match slot {
+                Some(Value::Array(a)) => match Self::elem1_offset(a, i) {
+                    Ok(o) => match a.data.get_mut(o) {
+                        Some(e) => {
+                            match (e, v) {
+                                (Value::Num(old), Value::Num(x)) => *old = x,
+                                (e, v) => *e = v,
+                            }
+                            return Ok(());
+                        }
+                        None => WalkErr::Shape,
+                    },
+                    Err(e) => e,
+                },
+                Some(Value::Absent) => WalkErr::NotPresent,
+                _ => WalkErr::Shape,
+            };
+            return Err(self.walk_err(r, pl.span));
+        }
+        let mark = self.push_indices(p, pl)?;
+        let res = self.write_walk(pl, mark, v);
+        self.idx.truncate(mark);
+        match res {
+            Ok(true) => Ok(()),
+            Ok(false) => Err(self.dims_error(pl.span)),
+            Err(e) => Err(self.walk_err(e, pl.span)),
+        }
+    }
+
+    /// Store through a place whose indices are on the index stack from `mark` (no
+    /// allocation); `Ok(false)` when an array would change its sizes.
+    fn write_walk(&mut self, pl: &Place, mark: usize, v: Value) -> Result<bool, WalkErr> {
+        let (bp, rbp) = self.bases();
+        let Interp {
+            stack,
+            globals,
+            refs,
+            idx,
+            ..
+        } = self;
+        let mut cur: &mut Value = match pl.root {
+            Root::Local(s) => stack.get_mut(bp + s as usize).ok_or(WalkErr::Shape)?,
+            Root::Global(g) => globals.get_mut(g as usize).ok_or(WalkErr::Shape)?,
+            Root::Ref(k) => {
+                let r = refs.get(rbp + k as usize).ok_or(WalkErr::Shape)?;
+                let mut c = match r.root {
+                    AbsRoot::Stack(i) => stack.get_mut(i as usize).ok_or(WalkErr::Shape)?,
+                    AbsRoot::Global(g) => globals.get_mut(g as usize).ok_or(WalkErr::Shape)?,
+                    AbsRoot::Absent => return Err(WalkErr::NotPresent),
+                };
+                for &s in &r.path {
+                    c = step_mut(c, s)?;
+                }
+                c
+            }
+        };
+        let mut ii = mark;
+        for op in pl.path.iter() {
+            match op {
+                PathOp::Field(f) => cur = field_mut(cur, *f)?,
+                PathOp::Index(es) => {
+                    let n = es.len();
+                    let ix = idx.get(ii..ii + n).ok_or(WalkErr::Shape)?;
+                    cur = match cur {
+                        Value::Array(a) => match a.offset(ix) {
+                            Some(o) => a.data.get_mut(o).ok_or(WalkErr::Shape)?,
+                            None => return Err(oob(a, ix)),
+                        },
+                        Value::Absent => return Err(WalkErr::NotPresent),
+                        _ => return Err(WalkErr::Shape),
+                    };
+                    ii += n;
+                }
+            }
+        }
+        if !same_dims(cur, &v) {
+            return Ok(false);
+        }
+        *cur = v;
+        Ok(true)
     }
 
     /// Store a value through an absolute place.

@@ -28,7 +28,11 @@ impl Interp {
             if self.steps >= self.next_poll {
                 self.poll(p, s.span)?;
             }
-            match self.exec_stmt(p, s) {
+            let r = match &s.kind {
+                StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
+                _ => self.exec_stmt(p, s),
+            };
+            match r {
                 Ok(()) => {
                     i += 1;
                     retries = 0;
@@ -63,8 +67,10 @@ impl Interp {
         Ok(())
     }
 
+    #[inline(never)]
     fn exec_stmt(&mut self, p: &Program, s: &Stmt) -> Exec<()> {
         match &s.kind {
+            StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
             StmtKind::Assign { place, value } => {
                 let v = self.eval(p, value)?;
                 self.store(p, place, v)
@@ -110,29 +116,15 @@ impl Interp {
                 subject,
                 cases,
                 default,
-            } => {
-                let v = self.eval(p, subject)?;
-                for (vals, b) in cases {
-                    for e in vals {
-                        let c = self.eval(p, e)?;
-                        if values_equal(&v, &c) {
-                            return self.exec_block(p, b);
-                        }
-                    }
-                }
-                match default {
-                    Some(b) => self.exec_block(p, b),
-                    None => Ok(()),
-                }
-            }
+            } => self.exec_test(p, subject, cases, default.as_ref()),
             StmtKind::Label(_) => Ok(()),
             StmtKind::Goto(l) => Err(Unwind::Goto(*l)),
             StmtKind::Return(e) => {
-                let v = match e {
+                self.ret = match e {
                     Some(e) => self.eval(p, e)?,
                     None => Value::Absent,
                 };
-                Err(Unwind::Return(v))
+                Err(Unwind::Return)
             }
             StmtKind::Raise(e) => self.exec_raise(p, e.as_ref(), s.span),
             StmtKind::Retry => Err(Unwind::Retry),
@@ -147,7 +139,78 @@ impl Interp {
         }
     }
 
+    /// `place := value` for `num`.
+    #[inline(always)]
+    fn assign_num(
+        &mut self,
+        p: &Program,
+        place: &crate::ir::Place,
+        value: &crate::ir::Expr,
+    ) -> Exec<()> {
+        let x = self.nf(p, value);
+        if x.is_nan() {
+            return Err(self.take_pending(value.span));
+        }
+        if let (crate::ir::Root::Local(s), true) = (place.root, place.path.is_empty())
+            && let Some(slot) = self.stack.get_mut(self.bp + s as usize)
+        {
+            match slot {
+                Value::Num(old) => *old = x,
+                other => *other = Value::Num(x),
+            }
+            return Ok(());
+        }
+        // `a{i} := x` on a local or global 1-D array of num, inline.
+        if let [crate::ir::PathOp::Index(es)] = &*place.path
+            && let [ie] = &**es
+            && let Some(ix) = self.num_leaf(ie)
+        {
+            let arr = match place.root {
+                crate::ir::Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
+                crate::ir::Root::Global(g) => self.globals.get_mut(g as usize),
+                crate::ir::Root::Ref(_) => None,
+            };
+            if let Some(Value::Array(a)) = arr {
+                let i = ix as i32;
+                if a.rank == 1
+                    && i as f32 == ix
+                    && i >= 1
+                    && i as u32 <= a.dims[0]
+                    && let Some(Value::Num(v)) = a.data.get_mut((i - 1) as usize)
+                {
+                    *v = x;
+                    return Ok(());
+                }
+            }
+        }
+        self.store(p, place, Value::Num(x))
+    }
+
+    #[inline(never)]
+    fn exec_test(
+        &mut self,
+        p: &Program,
+        subject: &crate::ir::Expr,
+        cases: &[(Vec<crate::ir::Expr>, Block)],
+        default: Option<&Block>,
+    ) -> Exec<()> {
+        let v = self.eval(p, subject)?;
+        for (vals, b) in cases {
+            for e in vals {
+                let c = self.eval(p, e)?;
+                if values_equal(&v, &c) {
+                    return self.exec_block(p, b);
+                }
+            }
+        }
+        match default {
+            Some(b) => self.exec_block(p, b),
+            None => Ok(()),
+        }
+    }
+
     #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
     fn exec_for(
         &mut self,
         p: &Program,
@@ -175,8 +238,10 @@ impl Interp {
         let idx = self.bases().0 + slot as usize;
         let mut i = a;
         while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
-            if let Some(v) = self.stack.get_mut(idx) {
-                *v = Value::Num(i);
+            match self.stack.get_mut(idx) {
+                Some(Value::Num(v)) => *v = i,
+                Some(v) => *v = Value::Num(i),
+                None => {}
             }
             self.exec_block(p, body)?;
             let next = i + st;
@@ -192,6 +257,7 @@ impl Interp {
         Ok(())
     }
 
+    #[inline(never)]
     fn exec_raise(&mut self, p: &Program, e: Option<&crate::ir::Expr>, span: Span) -> Exec<()> {
         let handling = self.frames.last().and_then(|f| f.handling.clone());
         let Some(e) = e else {
@@ -228,6 +294,7 @@ impl Interp {
     }
 
     /// Offer an error to the current routine's ERROR handler.
+    #[inline(never)]
     fn handle_error(&mut self, p: &Program, e: Box<RuntimeError>) -> Exec<Resume> {
         let Some(errno) = e.errno() else {
             return Err(Unwind::Fatal(e));
@@ -264,14 +331,24 @@ impl Interp {
             f.handling = None;
         }
         match res {
-            Ok(()) => Err(Unwind::Return(Value::Absent)),
+            Ok(()) => {
+                self.ret = Value::Absent;
+                Err(Unwind::Return)
+            }
             Err(Unwind::Retry) => Ok(Resume::Retry),
             Err(Unwind::TryNext) => Ok(Resume::Next),
             Err(other) => Err(other),
         }
     }
 
+    /// The per-statement slow path (for callers outside `exec_block`).
+    pub(crate) fn poll_at(&mut self, p: &Program, span: Span) -> Exec<()> {
+        self.poll(p, span)
+    }
+
     /// The per-statement slow path: budget, hook, interrupts.
+    #[cold]
+    #[inline(never)]
     fn poll(&mut self, p: &Program, span: Span) -> Exec<()> {
         if let Some(b) = self.budget
             && self.steps > b

@@ -220,9 +220,8 @@ impl<'a> Checker<'a> {
             let mid = ModuleId(mi as u32);
             self.cur_module = mid;
             for item in &m.items {
-                match item {
-                    ModuleItem::Data(d) => self.collect_global(mid, d),
-                    _ => {}
+                if let ModuleItem::Data(d) = item {
+                    self.collect_global(mid, d);
                 }
             }
         }
@@ -481,6 +480,7 @@ impl<'a> Checker<'a> {
             undo: None,
             span: r.span,
             head_span: r.head_span,
+            simple: false,
         });
         self.routine_asts.push(r);
     }

@@ -576,7 +576,8 @@ impl Checker<'_> {
             (self.rvalue(lhs, hint, None), self.rvalue(rhs, hint, None))
         };
         let ((l, lt), (r, rt)) = (l?, r?);
-        let ((mut l, mut lt), (mut r, mut rt)) = (self.signal_value(l, lt), self.signal_value(r, rt));
+        let ((mut l, mut lt), (mut r, mut rt)) =
+            (self.signal_value(l, lt), self.signal_value(r, rt));
         // A num literal next to a dnum operand is read as dnum (no single-precision rounding).
         if lt == Ty::DNUM && rt == Ty::NUM && is_literal(rhs) {
             (r, rt) = self.rvalue(rhs, Some(Ty::DNUM), None)?;
@@ -615,6 +616,22 @@ impl Checker<'_> {
                 None
             }
         };
+        // `x MOD 100`: a constant integer divisor is checked once, here.
+        if both_num
+            && matches!(op, AB::Mod | AB::IntDiv)
+            && let ExprKind::Num(k) = r.kind
+            && k != 0.0
+            && (k as i32) as f32 == k
+            && k.abs() < 16_777_216.0
+        {
+            return Some((
+                Expr {
+                    kind: ExprKind::NumModDivK(Box::new(l), k as i32, op == AB::Mod),
+                    span,
+                },
+                Ty::NUM,
+            ));
+        }
         let res = match op {
             AB::Add => num_dnum(BinOp::NumAdd, BinOp::DnumAdd, false).or_else(|| {
                 if lt == Ty::STRING && rt == Ty::STRING {

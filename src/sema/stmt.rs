@@ -146,6 +146,21 @@ impl<'a> Checker<'a> {
         ir.error = error;
         ir.undo = undo;
         ir.n_slots = rcx.map(|c| c.n_slots).unwrap_or(n_slots);
+        ir.simple = matches!(ir.kind, RoutineKind::Func(_))
+            && ir.locals.is_empty()
+            && ir.error.is_none()
+            && ir.undo.is_none()
+            && ir
+                .params
+                .iter()
+                .all(|p| p.mode == ParamMode::In && !p.optional)
+            && matches!(
+                ir.body.stmts.as_slice(),
+                [Stmt {
+                    kind: StmtKind::Return(Some(_)),
+                    ..
+                }]
+            );
     }
 
     fn routine_data(&mut self, data: &'a [ast::DataDecl]) -> Vec<LocalDecl> {
@@ -538,6 +553,12 @@ impl<'a> Checker<'a> {
         let ctx = format!("the value assigned to `{}`", info.name);
         let (x, xt) = self.rvalue(value, Some(info.ty), info.dims.as_deref())?;
         let x = self.coerce(x, xt, info.ty, &ctx, value.span)?;
+        if info.ty == Ty::NUM {
+            return Some(StmtKind::AssignNum {
+                place: info.place,
+                value: x,
+            });
+        }
         Some(StmtKind::Assign {
             place: info.place,
             value: x,
@@ -550,7 +571,10 @@ impl<'a> Checker<'a> {
         args: &'a [ast::Arg],
         span: crate::source::Span,
     ) -> Option<StmtKind> {
-        if args.iter().any(|a| matches!(a.kind, ArgKind::Placeholder(_))) {
+        if args
+            .iter()
+            .any(|a| matches!(a.kind, ArgKind::Placeholder(_)))
+        {
             return Some(StmtKind::Placeholder("<ARG>"));
         }
         let key = name.folded();
