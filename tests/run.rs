@@ -43,6 +43,32 @@ fn golden_runs() {
     });
 }
 
+/// Multi-module programs: each directory under `tests/run` is one program.
+#[test]
+fn golden_multi_module_runs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/run");
+    let mut dirs: Vec<_> = std::fs::read_dir(&root)
+        .expect("tests/run")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_dir())
+        .collect();
+    dirs.sort();
+    assert!(!dirs.is_empty());
+    for dir in dirs {
+        let name = dir
+            .file_name()
+            .and_then(|n| n.to_str())
+            .expect("name")
+            .to_string();
+        let (code, stdout, stderr) = run_in(&root, &["run", &name]);
+        insta::assert_snapshot!(
+            format!("dir_{name}"),
+            format!("exit code: {code}\n--- stdout\n{stdout}--- stderr\n{stderr}")
+        );
+    }
+}
+
 #[test]
 fn persistents_survive_between_runs() {
     let dir = std::env::temp_dir().join(format!("rapidvc-pers-{}", std::process::id()));

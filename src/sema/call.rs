@@ -43,6 +43,16 @@ pub(crate) struct PView {
     pub group: u16,
 }
 
+/// Whether the routine being called is a native (for read-only predefined data).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub(crate) enum CalleeKind {
+    /// A user routine.
+    #[default]
+    User,
+    /// A built-in.
+    Native,
+}
+
 /// Who is called.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Callee {
@@ -152,6 +162,23 @@ impl Checker<'_> {
             Callee::User(r) => self.user_view(r),
             Callee::Native(n) => self.native_view(n),
         };
+        let saved_kind = self.callee_kind;
+        self.callee_kind = match callee {
+            Callee::User(_) => CalleeKind::User,
+            Callee::Native(_) => CalleeKind::Native,
+        };
+        let out = self.lower_args_inner(&params, args, name, span);
+        self.callee_kind = saved_kind;
+        out
+    }
+
+    fn lower_args_inner(
+        &mut self,
+        params: &[PView],
+        args: &[ast::Arg],
+        name: &ast::Ident,
+        span: Span,
+    ) -> Option<Vec<Arg>> {
         let callee_name = name.node.clone();
         let mut out: Vec<Option<Arg>> = vec![None; params.len()];
         let mut next_req = 0usize;
@@ -363,6 +390,19 @@ impl Checker<'_> {
                 }
             },
             PMode::InOut | PMode::Var | PMode::Pers => {
+                if let (PTy::T(t), ast::ExprKind::Name(id)) = (p.ty, &e.kind)
+                    && self.is_signal_type(t)
+                    && !self.name_exists(id)
+                {
+                    self.err(
+                        K::UnknownSignal {
+                            name: id.node.clone(),
+                            ty: self.ty_name(t),
+                        },
+                        e.span,
+                    );
+                    return None;
+                }
                 let mode = match p.mode {
                     PMode::InOut => "INOUT",
                     PMode::Var => "VAR",
@@ -390,6 +430,11 @@ impl Checker<'_> {
                     (PMode::Pers | PMode::InOut, Obj::Pers | Obj::RefParam(ParamMode::Pers)) => {
                         info.whole
                     }
+                    // Predefined data may be read through PERS parameters of built-ins
+                    // (`MoveL p, v100, fine, tool0`), never changed by user routines.
+                    (PMode::Pers, Obj::ReadOnlyPers) => {
+                        info.whole && matches!(self.callee_kind, CalleeKind::Native)
+                    }
                     _ => false,
                 };
                 if !allowed {
@@ -401,6 +446,7 @@ impl Checker<'_> {
                         Obj::InParam => "an IN parameter (read-only)".into(),
                         Obj::RefParam(m) => format!("{} parameter", mode_name(m)),
                         Obj::ForVar => "a FOR loop variable".into(),
+                        Obj::ReadOnlyPers => "predefined read-only data".into(),
                     };
                     self.err(
                         K::ArgMode {
@@ -430,7 +476,10 @@ impl Checker<'_> {
     fn check_exact(&mut self, p: &PView, t: Ty, ctx: &str, span: Span) -> Option<()> {
         let (ok, expected) = match p.ty {
             PTy::T(want) => (want == t, self.ty_name(want)),
-            PTy::Any(0) => (self.types.is_value(t.base), "a value type".to_string()),
+            PTy::Any(0) => (
+                t.rank == 0 && self.types.is_value(t.base),
+                "a value (not an array)".to_string(),
+            ),
             PTy::Any(_) => (t.rank > 0, "an array".to_string()),
             PTy::AnyNum => (t == Ty::NUM || t == Ty::DNUM, "num or dnum".to_string()),
             PTy::Switch => (false, "switch".to_string()),

@@ -17,6 +17,13 @@ pub enum SemaErrorKind {
         /// A similar visible name, if any.
         suggestion: Option<String>,
     },
+    /// A signal argument that names no configured signal.
+    UnknownSignal {
+        /// The name.
+        name: String,
+        /// The signal type expected (`signaldo`, …).
+        ty: String,
+    },
     /// A call to an instruction or function nobody declares.
     Unsupported {
         /// The routine name.
@@ -287,6 +294,14 @@ impl SemaError {
                 "not declared in this routine, its module or any global scope",
                 suggestion.as_ref().map(|s| format!("did you mean `{s}`?")),
             ),
+            K::UnknownSignal { name, ty } => d(
+                "rapidvc::sema::unknown_signal",
+                format!("`{name}` is not a configured I/O signal"),
+                &format!("needs a `{ty}`"),
+                Some(format!(
+                    "define `{name}` in EIO.cfg (an EIO_SIGNAL instance) in the configuration directory (--config, default: the program's directory)"
+                )),
+            ),
             K::Unsupported { name, what } => d(
                 "rapidvc::sema::unsupported",
                 format!("`{name}` is not supported by rapidvc"),
@@ -307,8 +322,12 @@ impl SemaError {
                 found,
             } => d(
                 "rapidvc::sema::type_mismatch",
-                format!("{context} must be `{expected}`, not `{found}`"),
-                &format!("this is `{found}`"),
+                format!(
+                    "{context} must be {}, not {}",
+                    quote(expected),
+                    quote(found)
+                ),
+                &format!("this is {}", quote(found)),
                 None,
             ),
             K::BadOperands { op, lhs, rhs } => d(
@@ -537,6 +556,15 @@ impl SemaError {
                 None,
             ),
         }
+    }
+}
+
+/// A type name in backquotes; a description (with spaces) as it is.
+fn quote(s: &str) -> String {
+    if s.contains(' ') {
+        s.to_string()
+    } else {
+        format!("`{s}`")
     }
 }
 

@@ -26,6 +26,9 @@ pub(super) enum Obj {
     InParam,
     /// An INOUT/VAR/PERS parameter.
     RefParam(ParamMode),
+    /// Predefined data of a READONLY system module (`tool0`, `wobj0`, `load0`): passed to
+    /// PERS parameters of built-ins, never assigned.
+    ReadOnlyPers,
     /// A FOR loop variable.
     ForVar,
 }
@@ -177,7 +180,9 @@ impl Checker<'_> {
         if matches!(g.origin, GlobalOrigin::Module(_)) {
             self.deps.push(gid);
         }
+        let readonly = matches!(g.origin, GlobalOrigin::Module(m) if self.is_stdlib(m));
         let kind = match g.storage {
+            Storage::Pers if readonly => Obj::ReadOnlyPers,
             Storage::Var => Obj::Var,
             Storage::Pers => Obj::Pers,
             Storage::Const => Obj::Const,
@@ -475,14 +480,29 @@ impl Checker<'_> {
         (Expr { kind, span }, info.ty)
     }
 
-    /// A signal used where a value is needed reads the signal (`IF di1 = 1`).
-    pub(super) fn signal_value(&self, x: Expr, t: Ty) -> (Expr, Ty) {
-        let is_signal = t.rank == 0
+    /// Is `t` one of the signal types?
+    pub(super) fn is_signal_type(&self, t: Ty) -> bool {
+        t.rank == 0
             && matches!(
                 self.types.name(t.base).to_ascii_lowercase().as_str(),
                 "signaldi" | "signaldo" | "signalai" | "signalao" | "signalgi" | "signalgo"
-            );
-        if is_signal {
+            )
+    }
+
+    /// Does a data name resolve (without recording a dependency)?
+    pub(super) fn name_exists(&self, id: &ast::Ident) -> bool {
+        let key = id.folded();
+        if let Some(rcx) = &self.rcx
+            && (rcx.scope.contains_key(&key) || rcx.for_vars.iter().any(|(n, _)| *n == key))
+        {
+            return true;
+        }
+        key == "ERRNO" || key == "INTNO" || self.lookup_global(&key).is_some()
+    }
+
+    /// A signal used where a value is needed reads the signal (`IF di1 = 1`).
+    pub(super) fn signal_value(&self, x: Expr, t: Ty) -> (Expr, Ty) {
+        if self.is_signal_type(t) {
             let span = x.span;
             (
                 Expr {

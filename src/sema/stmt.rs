@@ -528,6 +528,7 @@ impl<'a> Checker<'a> {
             Obj::Const => Some("a constant (CONST)"),
             Obj::InParam => Some("an IN parameter (pass it INOUT to change it)"),
             Obj::ForVar => Some("a FOR loop variable"),
+            Obj::ReadOnlyPers => Some("predefined data of a READONLY system module"),
             _ => None,
         };
         if let Some(why) = why {
@@ -550,7 +551,7 @@ impl<'a> Checker<'a> {
             );
             return None;
         }
-        let ctx = format!("the value assigned to `{}`", info.name);
+        let ctx = format!("the value assigned to `{}`", place_text(target));
         let (x, xt) = self.rvalue(value, Some(info.ty), info.dims.as_deref())?;
         let x = self.coerce(x, xt, info.ty, &ctx, value.span)?;
         if info.ty == Ty::NUM {
@@ -790,5 +791,15 @@ fn terminates(stmts: &[ast::Stmt]) -> bool {
         } => cases.iter().all(|c| terminates(&c.body)) && terminates(d),
         S::While { cond, .. } => matches!(cond.kind, AK::Bool(true)),
         _ => false,
+    }
+}
+
+/// A place as written (`t.trans.x`, `a{…}`), for messages.
+fn place_text(e: &ast::Expr) -> String {
+    match &e.kind {
+        AK::Name(id) => id.node.clone(),
+        AK::Component { base, field } => format!("{}.{}", place_text(base), field.node),
+        AK::Index { base, .. } => format!("{}{{…}}", place_text(base)),
+        _ => "…".to_string(),
     }
 }
