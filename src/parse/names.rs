@@ -55,16 +55,7 @@ pub(crate) fn expected(rule: Rule) -> Option<Expected> {
         Rule::bar => Token("`|`"),
         Rule::star | Rule::open_dim => Token("`*`"),
 
-        Rule::op_add
-        | Rule::op_sub
-        | Rule::op_mul
-        | Rule::op_div
-        | Rule::op_le
-        | Rule::op_ne
-        | Rule::op_ge
-        | Rule::op_lt
-        | Rule::op_gt
-        | Rule::op_eq
+        Rule::infix_op
         | Rule::kw_div
         | Rule::kw_mod
         | Rule::kw_and
@@ -167,7 +158,7 @@ mod tests {
             expected(Rule::kw_endif).map(Expected::text),
             Some("`ENDIF`")
         );
-        assert_eq!(expected(Rule::op_lt), Some(Expected::Operator));
+        assert_eq!(expected(Rule::infix_op), Some(Expected::Operator));
         assert_eq!(expected(Rule::bad_stmt), None);
     }
 }
