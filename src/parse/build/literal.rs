@@ -64,12 +64,19 @@ impl Builder<'_, '_> {
                         it.next();
                         out.push(v as char);
                     } else {
-                        let len = 1 + rest
-                            .chars()
+                        // The backslash, the hex digits that follow, and the first other
+                        // character (what makes the escape invalid), if not the quote.
+                        let hex = rest
+                            .bytes()
                             .take(2)
-                            .take_while(|c| *c != '"')
-                            .map(char::len_utf8)
-                            .sum::<usize>();
+                            .take_while(u8::is_ascii_hexdigit)
+                            .count();
+                        let other = rest[hex..]
+                            .chars()
+                            .next()
+                            .filter(|c| *c != '"' && hex < 2)
+                            .map_or(0, char::len_utf8);
+                        let len = 1 + hex + other;
                         let at = start + 1 + i;
                         self.error(ParseErrorKind::InvalidEscape {
                             span: Span::new(self.file, at, at + len),

@@ -131,13 +131,17 @@ impl Builder<'_, '_> {
                         let opener = match kw.to_ascii_uppercase().as_str() {
                             "ENDWHILE" => "WHILE",
                             "ENDFOR" => "FOR",
-                            "ENDTEST" | "CASE" | "DEFAULT" => "TEST",
+                            "ENDTEST" | "CASE" | "DEFAULT" | "<CSE>" => "TEST",
                             _ => "IF",
                         };
+                        let help = (opener == "IF").then_some(
+                            "did you forget `THEN`? `IF cond stmt;` is a complete compact IF, without ENDIF",
+                        );
                         self.error(ParseErrorKind::StrayKeyword {
                             span: self.span(&item),
                             keyword: kw,
                             opener,
+                            help,
                         });
                     }
                 }
@@ -343,17 +347,12 @@ impl Builder<'_, '_> {
                 help: "LOCAL is only allowed on module-level data and routines",
             });
         }
+        // (`TASK` on VAR or CONST is reported with the declaration itself.)
         if d.storage == Storage::Pers {
             self.error(ParseErrorKind::InvalidModifier {
                 span: word_span("PERS"),
                 keyword: "PERS".into(),
                 help: "routine data is VAR or CONST; declare persistents at module level",
-            });
-        } else if d.task {
-            self.error(ParseErrorKind::InvalidModifier {
-                span: word_span("TASK"),
-                keyword: "TASK".into(),
-                help: "TASK is only allowed on module-level PERS data",
             });
         }
     }
