@@ -138,4 +138,278 @@ mod robustness {
             assert_eq!((errors, len), (0, 1), "{shown}");
         }
     }
+
+    /// Codes of the diagnostics of `text`, parsed on a 2 MiB stack.
+    fn codes(text: String) -> Vec<String> {
+        on_small_stack(move || {
+            let (_, d, _) = check("input.mod", &text);
+            d.iter()
+                .filter_map(|x| miette::Diagnostic::code(x).map(|c| c.to_string()))
+                .collect()
+        })
+    }
+
+    #[test]
+    fn nesting_beyond_the_limit_is_an_error() {
+        let n = 1000;
+        for text in [
+            wrap_stmt(&format!("x := {}1{};", "(".repeat(n), ")".repeat(n))),
+            wrap_stmt(&format!("x := {}1{};", "[".repeat(n), "]".repeat(n))),
+            wrap_stmt(&format!("x := {}a{};", "f(".repeat(n), ")".repeat(n))),
+            wrap_stmt(&format!(
+                "{}x := 1;{}",
+                "IF a THEN ".repeat(n),
+                " ENDIF".repeat(n)
+            )),
+            wrap_stmt(&format!("{}x := 1;", "WHILE a DO ".repeat(n))),
+            wrap_stmt(&"(".repeat(n)),
+            "(".repeat(100_000),
+        ] {
+            assert_eq!(codes(text), ["rapidvc::parse::nesting_too_deep"]);
+        }
+    }
+
+    #[test]
+    fn long_chains_are_bounded() {
+        let n = 100_000;
+        for text in [
+            wrap_stmt(&format!("x := 1{};", " + 1".repeat(n))),
+            wrap_stmt(&format!("x := {}1;", "-".repeat(n))),
+            wrap_stmt(&format!("x := p{};", ".x".repeat(n))),
+            wrap_stmt(&format!("x := a{};", "{1}".repeat(n))),
+        ] {
+            assert_eq!(codes(text), ["rapidvc::parse::expression_too_complex"]);
+        }
+        // Long but flat: fine.
+        let args = vec!["1"; n].join(", ");
+        assert!(codes(wrap_stmt(&format!("Call {args};"))).is_empty());
+        assert!(codes(wrap_stmt(&format!("x := [{args}];"))).is_empty());
+    }
+
+    #[test]
+    fn hundred_thousand_lines() {
+        let mut text = gen_program::program(1 << 20);
+        while text.lines().count() < 100_000 {
+            text = gen_program::program(text.len() * 2);
+        }
+        assert!(codes(text).is_empty());
+    }
+
+    #[test]
+    fn ten_megabyte_single_line() {
+        let stmt = "x := x + 1; MoveL p, v100, z10, t\\WObj:=w; ";
+        let body = stmt.repeat((10 << 20) / stmt.len() + 1);
+        let text = format!("MODULE m PROC p() {body} ENDPROC ENDMODULE");
+        assert!(text.len() >= 10 << 20 && !text.contains('\n'));
+        assert!(codes(text).is_empty());
+        // One enormous token of each kind.
+        let big = 10 << 20;
+        assert!(codes(format!("MODULE m VAR num {};ENDMODULE", "a".repeat(big))).is_empty());
+        assert_eq!(
+            codes(format!(
+                "MODULE m CONST string s := \"{};ENDMODULE",
+                "a".repeat(big)
+            )),
+            ["rapidvc::parse::unterminated_string"]
+        );
+        assert_eq!(
+            codes(format!(
+                "MODULE m CONST num n := {};ENDMODULE",
+                "9".repeat(big)
+            )),
+            ["rapidvc::parse::number_out_of_range"]
+        );
+    }
+
+    /// A deterministic byte sequence (64-bit LCG).
+    fn pseudo_random(len: usize, seed: u64) -> Vec<u8> {
+        let mut x = seed;
+        (0..len)
+            .map(|_| {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (x >> 33) as u8
+            })
+            .collect()
+    }
+
+    #[test]
+    fn binary_garbage() {
+        let all: Vec<u8> = (0..=255u8).cycle().take(64 * 1024).collect();
+        for bytes in [pseudo_random(256 * 1024, 1), pseudo_random(4096, 2), all] {
+            let text = rapidvc::source::decode_bytes(&bytes);
+            let errors = on_small_stack(move || check("bin.mod", &text).1.error_count());
+            assert!(errors >= 1 && errors <= parse::MAX_ERRORS_PER_FILE + 1);
+        }
+    }
+
+    #[test]
+    fn truncated_programs() {
+        for path in manual_programs() {
+            let text = std::fs::read_to_string(&path).expect("program");
+            let texts: Vec<String> = (0..text.len())
+                .step_by(7)
+                .filter(|&i| text.is_char_boundary(i))
+                .map(|i| text[..i].to_string())
+                .collect();
+            on_small_stack(move || {
+                for t in texts {
+                    let (_, d, _) = check("cut.mod", &t);
+                    assert!(
+                        t.trim().is_empty()
+                            || d.has_errors()
+                            || t.trim_end().ends_with("ENDMODULE")
+                    );
+                }
+            });
+        }
+    }
+
+    #[test]
+    fn many_errors_are_capped() {
+        let text = wrap_stmt(&"x := ;\n".repeat(20_000));
+        let errors = on_small_stack(move || check("many.mod", &text).1.len());
+        assert_eq!(errors, parse::MAX_ERRORS_PER_FILE + 1);
+    }
+}
+
+fn manual_programs() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("programs/manual");
+    rapidvc::load::find_rapid_files(&[dir]).expect("manual programs")
+}
+
+/// Property tests: the parser never panics, whatever the input.
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Mutations of a token list: delete, duplicate, swap or insert.
+    #[derive(Debug, Clone)]
+    enum Mutation {
+        Delete(usize),
+        Duplicate(usize),
+        Swap(usize, usize),
+        Insert(usize, &'static str),
+    }
+
+    const VOCABULARY: &[&str] = &[
+        ";",
+        ",",
+        "(",
+        ")",
+        "[",
+        "]",
+        "{",
+        "}",
+        ":=",
+        ":",
+        "\\",
+        "?",
+        "%",
+        "\"",
+        "!",
+        "<SMT>",
+        "IF",
+        "THEN",
+        "ELSE",
+        "ENDIF",
+        "WHILE",
+        "DO",
+        "ENDWHILE",
+        "FOR",
+        "TEST",
+        "CASE",
+        "ENDPROC",
+        "PROC",
+        "FUNC",
+        "ENDFUNC",
+        "ENDMODULE",
+        "MODULE",
+        "NOT",
+        "AND",
+        "-",
+        "*",
+        "9E+09",
+        ".5",
+        "x",
+    ];
+
+    fn mutation() -> impl Strategy<Value = Mutation> {
+        prop_oneof![
+            any::<usize>().prop_map(Mutation::Delete),
+            any::<usize>().prop_map(Mutation::Duplicate),
+            (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Mutation::Swap(a, b)),
+            (any::<usize>(), prop::sample::select(VOCABULARY))
+                .prop_map(|(a, t)| Mutation::Insert(a, t)),
+        ]
+    }
+
+    /// Split into tokens, keeping the separators attached so the text stays readable.
+    fn tokens(text: &str) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut cur = String::new();
+        for c in text.chars() {
+            cur.push(c);
+            if c.is_whitespace() || ",;()[]".contains(c) {
+                out.push(std::mem::take(&mut cur));
+            }
+        }
+        out.push(cur);
+        out
+    }
+
+    fn apply(mut toks: Vec<String>, muts: &[Mutation]) -> String {
+        for m in muts {
+            let n = toks.len().max(1);
+            match *m {
+                Mutation::Delete(i) if !toks.is_empty() => {
+                    toks.remove(i % n);
+                }
+                Mutation::Duplicate(i) if !toks.is_empty() => {
+                    let t = toks[i % n].clone();
+                    toks.insert(i % n, t);
+                }
+                Mutation::Swap(a, b) if !toks.is_empty() => toks.swap(a % n, b % n),
+                Mutation::Insert(i, t) => toks.insert(i % (toks.len() + 1), format!(" {t} ")),
+                _ => {}
+            }
+        }
+        toks.concat()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..2048)) {
+            let text = rapidvc::source::decode_bytes(&bytes);
+            let (_, d, m) = check("bytes.mod", &text);
+            // Rendering must not panic either.
+            let _ = d.render_plain(&m, 80);
+            let _ = d.to_json(&m);
+        }
+
+        #[test]
+        fn arbitrary_text_never_panics(text in "(MODULE m|PROC p\\(\\)|[ -~\n\t]|ENDPROC|ENDMODULE|IF |THEN|:=|<SMT>){0,120}") {
+            let (_, d, m) = check("text.mod", &text);
+            let _ = d.render_plain(&m, 80);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+        #[test]
+        fn mutated_programs_never_panic(
+            which in 0usize..3,
+            muts in prop::collection::vec(mutation(), 1..8),
+        ) {
+            let programs = manual_programs();
+            let text = std::fs::read_to_string(&programs[which % programs.len()]).expect("program");
+            let mutated = apply(tokens(&text), &muts);
+            let (_, d, m) = check("mutated.mod", &mutated);
+            let _ = d.render_plain(&m, 80);
+        }
+    }
 }
