@@ -240,7 +240,7 @@ mod robustness {
         for bytes in [pseudo_random(256 * 1024, 1), pseudo_random(4096, 2), all] {
             let text = rapidvc::source::decode_bytes(&bytes);
             let errors = on_small_stack(move || check("bin.mod", &text).1.error_count());
-            assert!(errors >= 1 && errors <= parse::MAX_ERRORS_PER_FILE + 1);
+            assert!((1..=parse::MAX_ERRORS_PER_FILE + 1).contains(&errors));
         }
     }
 

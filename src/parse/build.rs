@@ -11,6 +11,7 @@ use crate::ast::{self, Ident};
 use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span, Spanned};
 
+mod decl;
 mod expr;
 mod literal;
 mod module;

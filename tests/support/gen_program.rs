@@ -21,7 +21,7 @@ pub fn program(min_bytes: usize) -> String {
         // Real programs are mostly target declarations and motion calls; every few blocks
         // also holds a routine with every other construct.
         typical(&mut s, i);
-        if i % 3 == 0 {
+        if i.is_multiple_of(3) {
             block(&mut s, i);
         }
         i += 1;
@@ -108,7 +108,7 @@ fn block(s: &mut String, i: usize) {
     s.push_str(&format!(
         "  LOCAL FUNC num calc{i}(num a, \\num b)\r\n    IF Present(b) RETURN a * b + 1.5E-3;\r\n    RETURN Abs(a) + Sqrt(a * a + 9E+09) - 0xFF;\r\n  ENDFUNC\r\n"
     ));
-    if i % 10 == 0 {
+    if i.is_multiple_of(10) {
         s.push_str(&format!(
             "  TRAP trap{i}\r\n    EXIT;\r\n  ERROR\r\n    RAISE;\r\n  ENDTRAP\r\n"
         ));
