@@ -17,5 +17,8 @@ pub mod cli;
 pub mod config;
 pub mod diag;
 pub mod io;
+// moves under egm at merge
+#[path = "egm/pathcorr.rs"]
+pub mod pathcorr;
 pub mod rtlib;
 pub mod source;
