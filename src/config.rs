@@ -2,7 +2,7 @@
 //!
 //! [`load_dir`] finds each domain's file case-insensitively in the directory (or in its
 //! `SYSPAR` subdirectory, the layout of a controller backup), adds it to the
-//! [`SourceMap`] so diagnostics can show it, parses it with the generic [`cfg`] reader and
+//! [`SourceMap`] so diagnostics can show it, parses it with the generic [`cfg`](mod@cfg) reader and
 //! hands the result to the domain reader ([`eio`], [`sio`], [`moc`]). A missing file is not
 //! an error: the built-in definitions apply (the built-in signals, the built-in sensor for
 //! every device, the predefined motion profile `"default"`). Every problem is a

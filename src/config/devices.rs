@@ -79,7 +79,7 @@ pub enum DeviceError {
     /// The device has a transmission protocol type rapidvc does not implement.
     #[error("device \"{name}\" has type {kind}, which is not supported by rapidvc")]
     #[diagnostic(
-        code(rapidvc::config::unsupported_device),
+        code(rapidvc::config::unusable_device),
         help(
             "only UDPUC devices can be used; `--device {name}=builtin[:PATTERN]` puts the built-in sensor in its place"
         )
