@@ -206,7 +206,9 @@ impl Robot {
         let all = self.ik_all(flange_world);
         if all.is_empty() {
             // Every configuration needs some axis beyond its limit.
-            return Err(first_limit_violation(&raw[0], limits));
+            return Err(raw
+                .first()
+                .map_or(KinError::NotFinite, |r| first_limit_violation(r, limits)));
         }
         let mut available: Vec<ConfData> = all.iter().map(|q| self.conf_of(q)).collect();
         available.sort_by_key(|c| (c.cfx, c.cf1, c.cf4, c.cf6));
@@ -232,9 +234,14 @@ impl Robot {
             return Err(KinError::NotFinite);
         }
         let opw = self.to_opw_base(flange_world)?;
-        let sols = self
+        let mut sols = self
             .solver
             .inverse_continuing(&opw, &joints_deg_to_rad(current));
+        if sols.is_empty() {
+            // rs-opw gives up on references so far out that f64 cannot keep their turns;
+            // the plain solutions (then turned towards `current` below) still apply.
+            sols = self.solver.inverse(&opw);
+        }
         if sols.is_empty() {
             return Err(outside_reach(flange_world));
         }
