@@ -403,6 +403,26 @@ mod confdata {
     }
 
     #[test]
+    fn conf_matches_follows_ik_conf() {
+        let r = irb2600();
+        let q = [83.498, 0.077, -0.340, 0.103, 39.066, -0.136];
+        assert!(r.conf_matches(&q, &ConfData::new(0, 0, -1, 0)));
+        // Within the slack of a quadrant boundary.
+        assert!(r.conf_matches(&q, &ConfData::new(0, 0, 0, 0)));
+        assert!(!r.conf_matches(&q, &ConfData::new(0, 0, 1, 0)));
+        assert!(!r.conf_matches(&q, &ConfData::new(0, 0, -1, 1)));
+        assert!(!r.conf_matches(&[f64::NAN; 6], &ConfData::default()));
+        // Wrist centre between axis 1 and axis 2 (a1 = 150 mm): convention-dependent cfx.
+        assert!(!r.cfx_convention_dependent(&q));
+        let opw = &r.model().opw;
+        let j2 = -20.0f64;
+        let target_r = 0.075; // m, half of a1
+        let s = ((target_r - opw.a1 - opw.c2 * j2.to_radians().sin()) / opw.k()).asin();
+        let j3 = s.to_degrees() - j2 - 90.0 - opw.psi3().to_degrees();
+        assert!(r.cfx_convention_dependent(&[0.0, j2, j3, 0.0, 40.0, 0.0]));
+    }
+
+    #[test]
     fn turn_expansion_of_axes_4_and_6() {
         let r = irb2600();
         let q = [10.0, 10.0, 10.0, 10.0, 30.0, 20.0];

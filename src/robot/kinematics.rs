@@ -277,6 +277,26 @@ impl Robot {
         conf_from(q, &self.singularity(q))
     }
 
+    /// True when joints `q` are in the programmed configuration `wanted` by the rules of
+    /// [`Robot::ik_conf`]: cfx equal (a factor on its singularity matches both bits), and
+    /// axes 1, 4, 6 inside their programmed quadrants up to [`conf::CONF_QUADRANT_SLACK_DEG`].
+    /// This is the check ConfL\On applies where a linear move ends.
+    pub fn conf_matches(&self, q: &JointsDeg, wanted: &ConfData) -> bool {
+        q.iter().all(|v| v.is_finite())
+            && conf::cfx_compatible(&self.singularity(q), wanted.cfx)
+            && [(q[0], wanted.cf1), (q[3], wanted.cf4), (q[5], wanted.cf6)]
+                .iter()
+                .all(|&(v, cf)| conf::quadrant_distance(v, cf) <= conf::CONF_QUADRANT_SLACK_DEG)
+    }
+
+    /// True when the wrist centre lies between axis 1 and axis 2 (0 < r < a1). There the
+    /// "in front of axis 1" bit of cfx depends on the convention: rapidvc measures from axis 1
+    /// (robot.md §5.2), ARTE's `compute_configuration.m` from axis 2. Callers may warn.
+    pub fn cfx_convention_dependent(&self, q: &JointsDeg) -> bool {
+        let r = self.singularity(q).shoulder_mm;
+        r > 0.0 && r < super::units::m_to_mm(self.model.opw.a1)
+    }
+
     /// The three det-J factors of a joint vector (robot.md §8).
     pub fn singularity(&self, q: &JointsDeg) -> SingularityFactors {
         SingularityFactors::of(&self.model.opw, q)
