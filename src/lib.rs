@@ -18,4 +18,5 @@ pub mod config;
 pub mod diag;
 pub mod io;
 pub mod rtlib;
+pub mod robot;
 pub mod source;
