@@ -17,6 +17,6 @@ pub mod cli;
 pub mod config;
 pub mod diag;
 pub mod io;
-pub mod rtlib;
 pub mod robot;
+pub mod rtlib;
 pub mod source;
