@@ -20,5 +20,6 @@ pub mod io;
 // moves under egm at merge
 #[path = "egm/pathcorr.rs"]
 pub mod pathcorr;
+pub mod robot;
 pub mod rtlib;
 pub mod source;
