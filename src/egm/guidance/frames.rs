@@ -249,7 +249,8 @@ impl PoseGuidance {
     }
 
     /// The joint reference for a sensor pose: [`PoseGuidance::target_tcp_world`], then
-    /// [`PoseGuidance::joints_for_tcp`].
+    /// [`PoseGuidance::joints_for_tcp`]. `current` should be the joints commanded last (the
+    /// servo's position), so consecutive references stay on one configuration branch.
     pub fn joint_target(
         &self,
         sensor_pose: &Pose,
