@@ -16,6 +16,9 @@ pub mod ast;
 pub mod cli;
 pub mod config;
 pub mod diag;
+// moves under egm at merge
+#[path = "egm/guidance.rs"]
+pub mod egm_guidance;
 pub mod io;
 // moves under egm at merge
 #[path = "egm/pathcorr.rs"]
