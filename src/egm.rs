@@ -24,9 +24,12 @@ pub mod convert;
 pub mod event;
 mod presence;
 pub mod proto;
+pub mod session;
+pub mod stats;
 pub mod types;
 
 pub use event::{EgmEvent, EventKind};
+pub use session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};
 pub use types::{
     EgmMode, ExternalAxes, JointReference, Joints, MciState, MotorState, PathCorrection, Pose,
     PoseReference, RapidData, RapidExecState, RobotFeedback, SensorHeader, SensorReference, Target,
