@@ -24,8 +24,10 @@ pub mod convert;
 pub mod event;
 mod presence;
 pub mod proto;
+pub mod sensor;
 pub mod session;
 pub mod stats;
+pub mod transport;
 pub mod types;
 
 pub use event::{EgmEvent, EventKind};
