@@ -25,6 +25,7 @@ pub mod event;
 mod presence;
 pub mod proto;
 pub mod sensor;
+pub mod servo;
 pub mod session;
 pub mod stats;
 pub mod transport;
