@@ -24,13 +24,13 @@ pub enum Command {
     Check(check::CheckArgs),
     /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
     /// print what arrives plus latency statistics.
-    Sensor(sensor::SensorArgs),
+    Sensor(Box<sensor::SensorArgs>),
 }
 
 /// Run the parsed command line and return the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
-        Command::Sensor(args) => sensor::run(args),
+        Command::Sensor(args) => sensor::run(*args),
     }
 }
