@@ -5,6 +5,14 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use clap::Args;
+
+/// Prints a line to stdout, ignoring a closed pipe (`rapidvc sensor | head` must not panic).
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
 use tokio::net::UdpSocket;
 
 use crate::egm::sensor::{
@@ -251,7 +259,7 @@ async fn serve(args: SensorArgs, mut sensor: BuiltinSensor) -> ExitCode {
         }
     };
     let local = socket.local_addr().unwrap_or(addr);
-    println!(
+    say!(
         "rapidvc sensor on {local}: {} ({} mode); waiting for EgmRobot",
         describe(&sensor.config().pattern),
         sensor.mode()
@@ -296,11 +304,11 @@ async fn serve(args: SensorArgs, mut sensor: BuiltinSensor) -> ExitCode {
         let first = sensor.stats().received == 0;
         let reply = sensor.handle_datagram(now, bytes);
         if first {
-            println!("first message from {src} ({len} bytes)");
+            say!("first message from {src} ({len} bytes)");
         }
         if !sensor.last_missing().is_empty() && !warned_missing {
             warned_missing = true;
-            println!(
+            say!(
                 "warning: EgmRobot lacks what strict clients need: {}",
                 sensor.last_missing().join(", ")
             );
@@ -310,7 +318,7 @@ async fn serve(args: SensorArgs, mut sensor: BuiltinSensor) -> ExitCode {
                 if !src.ip().is_loopback() && !args.confirm_motion {
                     if !refused_remote {
                         refused_remote = true;
-                        println!(
+                        say!(
                             "not replying to {src}: it is not on this machine; pass --confirm-motion to move a real robot"
                         );
                     }
@@ -323,7 +331,7 @@ async fn serve(args: SensorArgs, mut sensor: BuiltinSensor) -> ExitCode {
             Err(e) => {
                 failures += 1;
                 if failures <= 10 || failures.is_multiple_of(1000) {
-                    println!("no reply to message #{failures} from {src}: {e}");
+                    say!("no reply to message #{failures} from {src}: {e}");
                 }
             }
         }
@@ -332,10 +340,10 @@ async fn serve(args: SensorArgs, mut sensor: BuiltinSensor) -> ExitCode {
             && (received == 1 || received.is_multiple_of(args.print_every))
             && let Some(snap) = sensor.last_robot()
         {
-            println!("{}", line(received, snap));
+            say!("{}", line(received, snap));
         }
     };
-    println!("stopped: {reason}");
+    say!("stopped: {reason}");
     summary(&sensor, send_errors);
     ExitCode::SUCCESS
 }
@@ -385,7 +393,7 @@ fn fmt_list(values: &[f64]) -> String {
 
 fn summary(sensor: &BuiltinSensor, send_errors: u64) {
     let st = sensor.stats();
-    println!(
+    say!(
         "messages: received {} replied {} undecodable {} incomplete {} sessions {} seqno-gaps {} send-errors {}",
         st.received,
         st.replied,
@@ -400,5 +408,5 @@ fn summary(sensor: &BuiltinSensor, send_errors: u64) {
 }
 
 fn print_hist(name: &str, h: &LatencyHistogram) {
-    println!("{name} {}", h.summary());
+    say!("{name} {}", h.summary());
 }
