@@ -12,10 +12,10 @@ use std::time::Duration;
 
 use egm_loop::*;
 use prost::Message;
-use rapidvc::egm::proto::EgmRobot;
+use rapidvc::egm::proto::{EgmJoints, EgmPlanned, EgmRobot, EgmSensor};
 use rapidvc::egm::servo::ServoInput;
 use rapidvc::egm::session::MAX_DATAGRAM_LEN;
-use rapidvc::egm::{EgmMode, Pose, Target};
+use rapidvc::egm::{EgmMode, EgmSession, Pose, SourceFilter, Target};
 
 mod loopback {
     use super::*;
@@ -106,48 +106,47 @@ mod loopback {
         assert!(close(&c.last, &START, 1e-6), "hold keeps the robot still");
     }
 
-    #[test]
-    fn hostile_senders_are_counted_and_the_session_survives() {
+    /// Garbage, oversized and NaN datagrams from a second sender on another port, plus
+    /// datagrams from another IP, while the built-in sensor drives the robot.
+    fn hostile_run(filter: SourceFilter) -> (Controller, bool) {
         let sensor = SensorThread::spawn("joint:5,5,5,5,35,5");
         let mut c = Controller::new(EgmMode::Joint, sensor.addr, Duration::from_secs(1));
+        let mut config = c.session.config().clone();
+        config.source_filter = filter;
+        c.session = EgmSession::new(config).unwrap();
         let local = c.transport.local_addr().unwrap();
-        // Same IP, another port: accepted by the IP filter but garbage.
-        let garbage = UdpSocket::bind("127.0.0.1:0").unwrap();
-        // Another IP: dropped by the filter (all of 127/8 is loopback on Linux).
+        let second = UdpSocket::bind("127.0.0.1:0").unwrap();
+        // Another IP (all of 127/8 is loopback on Linux; skipped where it is not).
         let intruder = UdpSocket::bind("127.0.0.2:0").ok();
+        let nan = EgmSensor {
+            planned: Some(EgmPlanned {
+                joints: Some(EgmJoints {
+                    joints: vec![f64::NAN; 6],
+                }),
+                ..Default::default()
+            }),
+            ..Default::default()
+        }
+        .encode_to_vec();
         let mut reference = ServoInput::position(START);
         c.session.start(c.now());
-        for round in 0..100u32 {
-            garbage.send_to(&[0xff; 40], local).unwrap();
-            garbage.send_to(&vec![0u8; 1500], local).unwrap();
+        // Let the sensor's first reply arrive, so the session knows its sensor.
+        for _ in 0..500 {
+            if c.session.stats().accepted > 0 {
+                break;
+            }
+            c.run(1, &mut reference, joints_of);
+        }
+        for _ in 0..100 {
+            second.send_to(&[0xff; 40], local).unwrap();
+            second.send_to(&[0u8; 1500], local).unwrap();
+            second.send_to(&nan, local).unwrap();
             if let Some(i) = &intruder {
                 i.send_to(&[0x12, 0x00], local).unwrap();
-            }
-            if round % 10 == 0 {
-                // NaN reference from the right IP.
-                let nan = rapidvc::egm::proto::EgmSensor {
-                    planned: Some(rapidvc::egm::proto::EgmPlanned {
-                        joints: Some(rapidvc::egm::proto::EgmJoints {
-                            joints: vec![f64::NAN; 6],
-                        }),
-                        ..Default::default()
-                    }),
-                    ..Default::default()
-                };
-                garbage.send_to(&nan.encode_to_vec(), local).unwrap();
             }
             c.run(3, &mut reference, joints_of);
         }
         sensor.finish();
-        let st = c.session.stats();
-        assert!(st.malformed >= 90, "{st:?}");
-        assert!(st.oversized >= 90, "{st:?}");
-        assert!(st.not_finite >= 9, "{st:?}");
-        if intruder.is_some() {
-            assert!(st.wrong_source >= 90, "{st:?}");
-            let once: Vec<_> = c.events.iter().filter(|e| e.number == 90101).collect();
-            assert_eq!(once.len(), 1);
-        }
         assert!(
             close(&c.last, &[5.0, 5.0, 5.0, 5.0, 35.0, 5.0], 0.05),
             "{:?}",
@@ -155,7 +154,37 @@ mod loopback {
         );
         assert!(!c.session.comm_timed_out());
         // Throttled: far fewer events than bad datagrams.
-        assert!(c.events.len() < 20, "{}", c.events.len());
+        assert!(c.events.len() < 20, "{:?}", c.events);
+        (c, intruder.is_some())
+    }
+
+    #[test]
+    fn a_second_sender_and_another_ip_are_dropped_counted_and_reported_once() {
+        let (c, other_ip) = hostile_run(SourceFilter::RemoteIp);
+        let st = c.session.stats();
+        let expected = if other_ip { 400 } else { 300 };
+        assert!(st.wrong_source >= expected - 10, "{st:?}");
+        assert_eq!(st.malformed + st.oversized + st.not_finite, 0, "{st:?}");
+        let reports: Vec<_> = c.events.iter().filter(|e| e.number == 90101).collect();
+        assert_eq!(reports.len(), 1, "{:?}", c.events);
+    }
+
+    #[test]
+    fn garbage_oversized_and_nan_are_counted_and_the_session_survives() {
+        let (c, other_ip) = hostile_run(SourceFilter::Any);
+        let st = c.session.stats();
+        let garbage = if other_ip { 200 } else { 100 };
+        assert!(st.malformed + st.incomplete >= garbage - 10, "{st:?}");
+        assert!(st.oversized >= 90, "{st:?}");
+        assert!(st.not_finite >= 90, "{st:?}");
+        assert_eq!(st.wrong_source, 0);
+        for number in [90102, 90103, 90104] {
+            assert!(
+                c.events.iter().any(|e| e.number == number),
+                "{:?}",
+                c.events
+            );
+        }
     }
 }
 

@@ -51,10 +51,12 @@ pub const MAX_QUEUE_CAPACITY: usize = 64;
 /// Which senders are accepted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SourceFilter {
-    /// Only datagrams from the configured remote IP (any port). Default.
+    /// Only datagrams from the configured remote IP. The port is free until the first
+    /// accepted reference (so NAT may change it); from then on the session keeps that
+    /// sender, and a second sender on another port is dropped too. Default.
     #[default]
     RemoteIp,
-    /// Any sender (NAT, containers).
+    /// Any sender (NAT, containers); references from all of them are used.
     Any,
 }
 
@@ -150,7 +152,7 @@ pub enum SessionState {
 /// Why a datagram was not used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DropReason {
-    /// From another address than the device's remote address.
+    /// From another IP than the device's remote address, or a second sender.
     WrongSource,
     /// Longer than the limit.
     Oversized,
@@ -186,7 +188,7 @@ pub struct EgmStats {
     pub received: u64,
     /// Accepted references.
     pub accepted: u64,
-    /// Dropped: unexpected sender.
+    /// Dropped: unexpected sender (another IP, or a second sender on another port).
     pub wrong_source: u64,
     /// Dropped: too long.
     pub oversized: u64,
@@ -265,6 +267,7 @@ pub struct EgmSession {
     events: VecDeque<EgmEvent>,
     throttle: [Throttle; THROTTLED.len()],
     wrong_source_reported: bool,
+    sensor: Option<SocketAddr>,
     scratch: EgmRobot,
     stats: EgmStats,
 }
@@ -308,6 +311,7 @@ impl EgmSession {
             events: VecDeque::with_capacity(EVENT_QUEUE),
             throttle: [Throttle::default(); THROTTLED.len()],
             wrong_source_reported: false,
+            sensor: None,
             scratch: EgmRobot::default(),
             stats: EgmStats::default(),
         })
@@ -342,6 +346,7 @@ impl EgmSession {
         self.current = None;
         self.throttle = [Throttle::default(); THROTTLED.len()];
         self.wrong_source_reported = false;
+        self.sensor = None;
     }
 
     /// Ends the session; nothing is sent until the next [`EgmSession::start`].
@@ -511,15 +516,12 @@ impl EgmSession {
             self.stats.ignored_idle += 1;
             return Outcome::Ignored;
         }
-        if self.config.source_filter == SourceFilter::RemoteIp
-            && canonical(src.ip()) != canonical(self.config.remote.ip())
-        {
+        if let Some(expected) = self.unexpected_sender(src) {
             self.stats.wrong_source += 1;
             if !self.wrong_source_reported {
                 self.wrong_source_reported = true;
                 let detail = format!(
-                    "datagram from {src} dropped: the device's remote address is {}; further ones are counted only",
-                    self.config.remote.ip()
+                    "datagram from {src} dropped: {expected}; further ones are counted only"
                 );
                 self.push_event(EgmEvent::new(EventKind::UnexpectedSender, detail));
             }
@@ -542,7 +544,7 @@ impl EgmSession {
         let mode = self.config.mode;
         match decode_reference(bytes, mode, &previous, &self.config.limits, now) {
             Ok(reference) => {
-                self.accept(now, reference);
+                self.accept(now, src, reference);
                 Outcome::Accepted
             }
             Err(DecodeError::Malformed { expected, source }) => {
@@ -568,8 +570,30 @@ impl EgmSession {
         }
     }
 
-    fn accept(&mut self, now: Duration, reference: SensorReference) {
+    /// Why `src` may not send to this session, if it may not.
+    fn unexpected_sender(&self, src: SocketAddr) -> Option<String> {
+        if self.config.source_filter == SourceFilter::Any {
+            return None;
+        }
+        if canonical(src.ip()) != canonical(self.config.remote.ip()) {
+            return Some(format!(
+                "the device's remote address is {}",
+                self.config.remote.ip()
+            ));
+        }
+        match self.sensor {
+            Some(sensor) if sensor.port() != src.port() => Some(format!(
+                "this session's sensor is {sensor} (a second sender)"
+            )),
+            _ => None,
+        }
+    }
+
+    fn accept(&mut self, now: Duration, src: SocketAddr, reference: SensorReference) {
         self.stats.accepted += 1;
+        if self.sensor.is_none() {
+            self.sensor = Some(src);
+        }
         if let Some(sent) = self.last_transmit {
             self.stats.turnaround.record(now.saturating_sub(sent));
         }

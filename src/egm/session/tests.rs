@@ -157,19 +157,26 @@ fn other_senders_are_dropped_counted_and_reported_once() {
             Outcome::Dropped(DropReason::WrongSource)
         );
     }
-    // Same IP, another port: accepted (clients reply from their bound port).
-    let other_port: SocketAddr = "127.0.0.1:1234".parse().unwrap();
+    // Same IP, another port than the remote port (NAT): accepted, and now the sensor.
+    let sensor: SocketAddr = "127.0.0.1:1234".parse().unwrap();
     assert_eq!(
-        s.handle_datagram(MS, other_port, &joint_reply(1.0)),
+        s.handle_datagram(MS, sensor, &joint_reply(1.0)),
         Outcome::Accepted
     );
-    // IPv4-mapped IPv6 form of the remote IP: accepted.
-    let mapped: SocketAddr = "[::ffff:127.0.0.1]:6510".parse().unwrap();
+    // IPv4-mapped IPv6 form of the same sender: accepted.
+    let mapped: SocketAddr = "[::ffff:127.0.0.1]:1234".parse().unwrap();
     assert_eq!(
         s.handle_datagram(MS, mapped, &joint_reply(1.0)),
         Outcome::Accepted
     );
-    assert_eq!(s.stats().wrong_source, 5);
+    // A second sender on another port of the same IP: dropped.
+    let second: SocketAddr = "127.0.0.1:6510".parse().unwrap();
+    assert_eq!(
+        s.handle_datagram(MS, second, &joint_reply(7.0)),
+        Outcome::Dropped(DropReason::WrongSource)
+    );
+    assert_eq!(j1(&s.poll_reference().unwrap()), 1.0);
+    assert_eq!(s.stats().wrong_source, 6);
     let ev = events(&mut s);
     assert_eq!(ev.len(), 1, "{ev:?}");
     assert_eq!(ev[0].number, 90101);
@@ -178,6 +185,11 @@ fn other_senders_are_dropped_counted_and_reported_once() {
     s.start(MS * 10);
     s.handle_datagram(MS * 11, intruder, &joint_reply(9.0));
     assert_eq!(events(&mut s).len(), 1);
+    assert_eq!(
+        s.handle_datagram(MS * 12, second, &joint_reply(2.0)),
+        Outcome::Accepted,
+        "a new session takes a new sensor"
+    );
 
     let mut cfg = EgmConfig::new(EgmMode::Joint, remote());
     cfg.source_filter = SourceFilter::Any;
