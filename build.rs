@@ -4,9 +4,8 @@
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("cargo:rerun-if-changed=proto/egm.proto");
     let fds = protox::compile(["egm.proto"], ["proto"])?;
-    let mut config = prost_build::Config::new();
-    // Repeated doubles go on the wire unpacked, one tag per value, as ABB's own encoder and
-    // every tested client do (proto2's default; prost follows the descriptor).
-    config.compile_fds(fds)?;
+    // proto2 repeated doubles stay unpacked (one tag per value), as ABB's encoder and every
+    // tested client write them; prost-build follows the descriptor's labels.
+    prost_build::Config::new().compile_fds(fds)?;
     Ok(())
 }

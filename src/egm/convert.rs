@@ -25,6 +25,7 @@ use super::types::{
     PoseReference, ROBOT_AXES, RapidData, RapidExecState, RobotFeedback, SensorHeader,
     SensorReference, Target,
 };
+use crate::robot::units::{quat_from_euler_zyx_deg, quat_to_euler_zyx_deg, quat_to_wxyz};
 
 /// Sanity bound for angles (degrees) when no robot limits are configured.
 pub const SANITY_ABS_DEGREES: f64 = 1.0e5;
@@ -471,18 +472,17 @@ pub fn normalize_quaternion(q: [f64; 4]) -> Option<[f64; 4]> {
 /// Quaternion `[w, x, y, z]` of the ZYX Euler angles `[x, y, z]` in degrees:
 /// R = Rz(z)·Ry(y)·Rx(x), as RAPID's `OrientZYX` and libegm use.
 pub fn quaternion_from_euler_zyx(deg: [f64; 3]) -> [f64; 4] {
-    let [x, y, z] = deg.map(units::deg_to_rad);
-    let q = UnitQuaternion::from_euler_angles(x, y, z);
-    [q.w, q.i, q.j, q.k]
+    let [x, y, z] = deg;
+    quat_to_wxyz(&quat_from_euler_zyx_deg(x, y, z))
 }
 
 /// ZYX Euler angles `[x, y, z]` in degrees of a quaternion `[w, x, y, z]` (inverse of
 /// [`quaternion_from_euler_zyx`]; y in [-90, 90]).
 pub fn euler_zyx_from_quaternion(q: [f64; 4]) -> [f64; 3] {
     let [w, i, j, k] = q;
-    let unit = UnitQuaternion::from_quaternion(Quaternion::new(w, i, j, k));
-    let (x, y, z) = unit.euler_angles();
-    [x, y, z].map(units::rad_to_deg)
+    quat_to_euler_zyx_deg(&UnitQuaternion::from_quaternion(Quaternion::new(
+        w, i, j, k,
+    )))
 }
 
 /// Options for building `EgmRobot`.
@@ -626,22 +626,12 @@ pub fn header_tm(now: Duration) -> u32 {
     units::wrapping_ms(now)
 }
 
-/// Unit conversions of the EGM layer.
+/// Time conversions of the EGM wire format (`EgmClock` sec/usec, `header.tm` ms).
 ///
-/// These move to `robot::units` when the robot module lands (the lead does this at merge);
-/// until then they are the only unit conversions in `egm`.
+/// Angle and length conversions come from [`crate::robot::units`]; these time conversions
+/// are the EGM layer's only other unit conversions and may move there at merge.
 pub(crate) mod units {
     use std::time::Duration;
-
-    /// Degrees to radians.
-    pub(crate) fn deg_to_rad(deg: f64) -> f64 {
-        deg.to_radians()
-    }
-
-    /// Radians to degrees.
-    pub(crate) fn rad_to_deg(rad: f64) -> f64 {
-        rad.to_degrees()
-    }
 
     /// Whole seconds and the remaining microseconds.
     pub(crate) fn sec_usec(t: Duration) -> (u64, u64) {

@@ -9,8 +9,9 @@ pub const MAX_EXTERNAL_AXES: usize = 6;
 /// Most `dnum` values in `EgmRAPIDdata` (ABB's `EGM_MAX_RAPID_DNUM`, presumably 40).
 pub const MAX_RAPID_DNUM: usize = 40;
 
-/// Robot joint values, degrees (or degrees per second for speeds), axis 1 first.
-pub type Joints = [f64; ROBOT_AXES];
+/// Robot joint values, degrees (or degrees per second for speeds), axis 1 first; the same
+/// type as [`crate::robot::JointsDeg`].
+pub type Joints = crate::robot::JointsDeg;
 
 /// Which message the sensor sends, chosen by the EGM setup (`\Joint`, `\Pose`, `\PathCorr`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -53,6 +54,20 @@ impl Pose {
 impl Default for Pose {
     fn default() -> Self {
         Pose::IDENTITY
+    }
+}
+
+impl Pose {
+    /// The same pose as the robot module's isometry (mm, normalised rotation).
+    pub fn to_robot(&self) -> crate::robot::Pose {
+        crate::robot::pose_from_pos_quat(self.pos, self.orient)
+    }
+}
+
+impl From<&crate::robot::Pose> for Pose {
+    fn from(p: &crate::robot::Pose) -> Self {
+        let (pos, orient) = crate::robot::pose_to_pos_quat(p);
+        Pose { pos, orient }
     }
 }
 

@@ -608,3 +608,16 @@ fn clock_and_tm_conversions() {
         Duration::MAX
     );
 }
+
+#[test]
+fn poses_convert_to_and_from_the_robot_module() {
+    let p = Pose {
+        pos: [500.0, -10.0, 600.0],
+        orient: normalize_quaternion([0.1, 0.7, 0.2, 0.3]).unwrap(),
+    };
+    let back = Pose::from(&p.to_robot());
+    assert!(close(&back.pos, &p.pos, 1e-12));
+    let same =
+        close(&back.orient, &p.orient, 1e-12) || close(&back.orient.map(|v| -v), &p.orient, 1e-12);
+    assert!(same, "{back:?}");
+}
