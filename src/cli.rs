@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod check;
+mod sensor;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -21,11 +22,15 @@ pub struct Cli {
 pub enum Command {
     /// Check RAPID files or directories for syntax and semantic errors.
     Check(check::CheckArgs),
+    /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
+    /// print what arrives plus latency statistics.
+    Sensor(Box<sensor::SensorArgs>),
 }
 
 /// Run the parsed command line and return the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
+        Command::Sensor(args) => sensor::run(*args),
     }
 }

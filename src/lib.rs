@@ -16,13 +16,8 @@ pub mod ast;
 pub mod cli;
 pub mod config;
 pub mod diag;
-// moves under egm at merge
-#[path = "egm/guidance.rs"]
-pub mod egm_guidance;
+pub mod egm;
 pub mod io;
-// moves under egm at merge
-#[path = "egm/pathcorr.rs"]
-pub mod pathcorr;
 pub mod robot;
 pub mod rtlib;
 pub mod source;

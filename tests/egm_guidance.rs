@@ -6,7 +6,7 @@
 #![allow(clippy::approx_constant)]
 
 // The one line to change when the module moves under `egm` (`rapidvc::egm::guidance`).
-use rapidvc::egm_guidance as guidance;
+use rapidvc::egm::guidance;
 
 use guidance::{
     Convergence, EgmFrameType, FeedbackMode, GuidanceError, PoseGuidance, PoseSetup, SignalSource,

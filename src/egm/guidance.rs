@@ -46,13 +46,13 @@
 
 // The explicit paths keep the children in `guidance/` both while this file is mounted with
 // `#[path]` from lib.rs and after it moves under `egm` (where they are redundant).
-#[path = "guidance/convergence.rs"]
+
 mod convergence;
-#[path = "guidance/frames.rs"]
+
 mod frames;
-#[path = "guidance/signals.rs"]
+
 mod signals;
-#[path = "guidance/speed.rs"]
+
 mod speed;
 
 use std::fmt;
