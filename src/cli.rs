@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 
 mod check;
 mod dump_ast;
+mod sensor;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -25,6 +26,9 @@ pub enum Command {
     /// Print the syntax tree of one file (for debugging the parser).
     #[command(hide = true)]
     DumpAst(dump_ast::DumpAstArgs),
+    /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
+    /// print what arrives plus latency statistics.
+    Sensor(Box<sensor::SensorArgs>),
 }
 
 /// Run the parsed command line and return the process exit code.
@@ -32,5 +36,6 @@ pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
+        Command::Sensor(args) => sensor::run(*args),
     }
 }

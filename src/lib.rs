@@ -14,7 +14,12 @@
 pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod config;
 pub mod diag;
+pub mod egm;
+pub mod io;
 pub mod load;
 pub mod parse;
+pub mod robot;
+pub mod rtlib;
 pub mod source;
