@@ -505,7 +505,7 @@ mod tests {
     fn previous_token_skips_comments() {
         let t = "x := 1 ! a \"comment\"\r\n  y";
         assert_eq!(prev_token_end(t, t.len() - 1), 6);
-        assert_eq!(prev_token_end("a \"!\" b", 7), 5);
+        assert_eq!(prev_token_end("a \"!\" b", 6), 5);
     }
 
     #[test]
