@@ -10,6 +10,7 @@ mod dump_ast;
 pub mod program;
 mod render;
 mod run;
+mod sensor;
 mod test;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
@@ -33,6 +34,9 @@ pub enum Command {
     /// Print the syntax tree of one file (for debugging the parser).
     #[command(hide = true)]
     DumpAst(dump_ast::DumpAstArgs),
+    /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
+    /// print what arrives plus latency statistics.
+    Sensor(Box<sensor::SensorArgs>),
 }
 
 /// Run the parsed command line and return the process exit code.
@@ -41,6 +45,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
         Command::Run(args) => run::run(args),
+        Command::Sensor(args) => sensor::run(*args),
         Command::Test(args) => test::run(args),
     }
 }

@@ -1,19 +1,26 @@
-//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals) now; `SIO.cfg` and `MOC.cfg` readers slot in next to `eio`.
+//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices) and `MOC.cfg` (External Motion Interface Data).
 //!
 //! [`load_dir`] finds each domain's file case-insensitively in the directory (or in its
 //! `SYSPAR` subdirectory, the layout of a controller backup), adds it to the
-//! [`SourceMap`] so diagnostics can show it, parses it with the generic [`cfg`] reader and
-//! hands the result to the domain reader ([`eio`]). A missing file is not an error: the
-//! built-in definitions apply. Every problem is a [`ConfigError`] in the [`Diagnostics`];
-//! reading never stops at the first one.
+//! [`SourceMap`] so diagnostics can show it, parses it with the generic [`cfg`](mod@cfg) reader and
+//! hands the result to the domain reader ([`eio`], [`sio`], [`moc`]). A missing file is not
+//! an error: the built-in definitions apply (the built-in signals, the built-in sensor for
+//! every device, the predefined motion profile `"default"`). Every problem is a
+//! [`ConfigError`] in the [`Diagnostics`]; reading never stops at the first one.
 //!
-//! To add a domain (e.g. SIO): write `config/sio.rs` with a `read(&CfgFile, &mut
-//! Diagnostics) -> SioConfig`, add a field to [`Config`] and one `load_file` call in
-//! [`load_dir`].
+//! [`devices`] combines SIO.cfg with the command line's `--device` overrides into the table
+//! that decides where an EGM device name points.
+//!
+//! To add a domain: write `config/<domain>.rs` with a `read(&CfgFile, &mut Diagnostics) ->
+//! …Config`, add a field to [`Config`] and one `load_file` call in [`load_dir_with`].
 
+mod attr;
 pub mod cfg;
+pub mod devices;
 pub mod eio;
 mod error;
+pub mod moc;
+pub mod sio;
 
 use std::path::{Path, PathBuf};
 
@@ -28,9 +35,29 @@ use crate::source::{SourceMap, decode_bytes};
 pub struct Config {
     /// The signals of `EIO.cfg`, if the directory has one.
     pub eio: Option<eio::EioConfig>,
+    /// The devices of `SIO.cfg`, if the directory has one (`None` makes every device the
+    /// built-in sensor; see [`devices`]).
+    pub sio: Option<sio::SioConfig>,
+    /// The motion profiles: the predefined `"default"` plus those of `MOC.cfg`.
+    pub moc: moc::MocConfig,
+}
+
+/// How [`load_dir_with`] reads the files.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// SIO.cfg options (the section names holding devices).
+    pub sio: sio::SioOptions,
 }
 
 impl Config {
+    /// The device table of SIO.cfg with the `--device` overrides.
+    pub fn device_table(
+        &self,
+        overrides: &[devices::DeviceOverride],
+    ) -> Result<devices::DeviceTable, devices::DeviceOverrideError> {
+        devices::DeviceTable::new(self.sio.as_ref(), overrides)
+    }
+
     /// The built-in signals with EIO.cfg's definitions added (an EIO.cfg signal replaces a
     /// built-in one of the same name).
     pub fn signal_defs(&self) -> Vec<SignalDef> {
@@ -97,8 +124,18 @@ pub fn load_file(
     Some(file)
 }
 
-/// Read the configuration files in `dir` (see the module doc).
+/// Read the configuration files in `dir` (see the module doc) with the default options.
 pub fn load_dir(dir: &Path, sources: &mut SourceMap, diags: &mut Diagnostics) -> Config {
+    load_dir_with(dir, &LoadOptions::default(), sources, diags)
+}
+
+/// Read the configuration files in `dir` (see the module doc).
+pub fn load_dir_with(
+    dir: &Path,
+    options: &LoadOptions,
+    sources: &mut SourceMap,
+    diags: &mut Diagnostics,
+) -> Config {
     if let Err(e) = std::fs::read_dir(dir) {
         diags.push(ConfigError::Io {
             path: dir.display().to_string(),
@@ -109,5 +146,12 @@ pub fn load_dir(dir: &Path, sources: &mut SourceMap, diags: &mut Diagnostics) ->
     let eio = find_file(dir, "EIO.cfg")
         .and_then(|p| load_file(&p, "EIO", sources, diags))
         .map(|f| eio::read(&f, diags));
-    Config { eio }
+    let sio = find_file(dir, "SIO.cfg")
+        .and_then(|p| load_file(&p, "SIO", sources, diags))
+        .map(|f| sio::read_with(&f, &options.sio, diags));
+    let moc = find_file(dir, "MOC.cfg")
+        .and_then(|p| load_file(&p, "MOC", sources, diags))
+        .map(|f| moc::read(&f, diags))
+        .unwrap_or_default();
+    Config { eio, sio, moc }
 }

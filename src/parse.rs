@@ -22,8 +22,11 @@ mod structure;
 
 pub use error::{ParseError, ParseErrorKind};
 
-/// Limit of nested brackets and blocks (checked before pest runs).
-pub const MAX_NESTING: usize = 256;
+/// Limit of nested brackets and blocks together (checked before pest runs). Real programs
+/// nest fewer than ten levels; 64 keeps the recursive-descent parser, the builders and later
+/// tree walks far inside a 2 MiB thread stack even in debug builds (where pest needs about
+/// 18 KiB of stack per nested IF).
+pub const MAX_NESTING: usize = 64;
 /// Limit of the depth of one expression tree (long operator chains nest too).
 pub const MAX_EXPR_DEPTH: usize = 256;
 /// Errors reported per file before the parser stops reporting.

@@ -176,3 +176,245 @@ fn config_error_is_a_rapid_diagnostic() {
     assert_eq!(e.source_id(), None);
     assert_eq!(e.to_string(), "cannot read x: gone");
 }
+
+/// SIO.cfg (UdpUc devices), MOC.cfg (External Motion Interface Data), the device table with
+/// `--device` overrides, and the configuration shipped with the manual's programs.
+mod egm {
+    use std::path::Path;
+
+    use rapidvc::config::devices::{DeviceOverride, DeviceTarget};
+    use rapidvc::config::moc::MotionLevel;
+    use rapidvc::config::sio::SioDeviceKind;
+    use rapidvc::config::{self, LoadOptions};
+    use rapidvc::diag::Diagnostics;
+    use rapidvc::source::SourceMap;
+
+    use super::load;
+
+    fn load_path(dir: &str) -> (SourceMap, config::Config, Diagnostics) {
+        let mut map = SourceMap::new();
+        let mut diags = Diagnostics::new();
+        let cfg = config::load_dir(Path::new(dir), &mut map, &mut diags);
+        (map, cfg, diags)
+    }
+
+    #[test]
+    fn valid_sio_and_moc() {
+        let (map, cfg, diags) = load("egm");
+        // One warning: the LTAPPTCP device is recorded but not usable.
+        assert_eq!(diags.error_count(), 0, "{}", diags.render_plain(&map, 80));
+        assert_eq!(diags.warning_count(), 1);
+        insta::assert_snapshot!(diags.render_plain(&map, 80));
+
+        let sio = cfg.sio.as_ref().unwrap();
+        assert_eq!(sio.devices.len(), 4);
+        assert_eq!(sio.udpuc_devices().count(), 3);
+        assert!(matches!(
+            &sio.device("lasertrack").unwrap().kind,
+            SioDeviceKind::Unsupported { type_name } if type_name == "LTAPPTCP"
+        ));
+
+        let names: Vec<&str> = cfg.moc.profiles().iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["default", "pathCorr", "ROB_1", "ROB_1_RAW"]);
+        assert_eq!(
+            cfg.moc.profile("pathCorr").unwrap().level,
+            MotionLevel::Path
+        );
+        let raw = cfg.moc.profile("rob_1_raw").unwrap();
+        assert_eq!(raw.level, MotionLevel::Raw);
+        assert_eq!(
+            (raw.ramp_time, raw.kp, raw.filter_bandwidth),
+            (0.1, 10.0, 40.0)
+        );
+        assert!(raw.do_not_restart_after_motors_off);
+
+        let table = cfg.device_table(&[]).unwrap();
+        assert_eq!(
+            table.resolve_device("EGMsensor:"),
+            Ok(DeviceTarget::Udp {
+                remote: "127.0.0.1:6510".parse().unwrap(),
+                local_port: 0
+            })
+        );
+        assert_eq!(
+            table.resolve_device("rob_1_v6"),
+            Ok(DeviceTarget::Udp {
+                remote: "[::1]:6511".parse().unwrap(),
+                local_port: 6599
+            })
+        );
+        let e = table.resolve_device("LaserTrack").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "device \"LaserTrack\" has type LTAPPTCP, which is not supported by rapidvc"
+        );
+        assert!(matches!(
+            table.resolve_device("OptSim"),
+            Ok(DeviceTarget::Ltapp { .. })
+        ));
+        assert!(table.resolve_device("nothere").is_err());
+
+        // --device overrides the file; builtin stands in for the LTAPP device.
+        let overrides: Vec<DeviceOverride> = [
+            "UCdevice=127.0.0.1:6600",
+            "LaserTrack=builtin:const:y=1,z=0",
+        ]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect();
+        let table = cfg.device_table(&overrides).unwrap();
+        assert_eq!(
+            table.resolve_device("ucdevice"),
+            Ok(DeviceTarget::Udp {
+                remote: "127.0.0.1:6600".parse().unwrap(),
+                local_port: 0
+            })
+        );
+        assert_eq!(
+            table.resolve_device("LaserTrack"),
+            Ok(DeviceTarget::Builtin {
+                pattern: Some("const:y=1,z=0".into())
+            })
+        );
+    }
+
+    #[test]
+    fn malformed_sio_and_moc() {
+        let (map, cfg, diags) = load("egm_bad");
+        assert_eq!(diags.error_count(), 10, "{}", diags.render_plain(&map, 80));
+        assert_eq!(diags.warning_count(), 3);
+        let devices: Vec<&str> = cfg
+            .sio
+            .as_ref()
+            .unwrap()
+            .devices
+            .iter()
+            .map(|d| d.name.as_str())
+            .collect();
+        assert_eq!(devices, ["good", "sock"]);
+        let names: Vec<&str> = cfg.moc.profiles().iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["default", "ok"]);
+        // Diagnostics point into the files.
+        let json = diags.to_json(&map);
+        assert!(json.contains("\"file\":\"tests/fixtures/cfg/egm_bad/SIO.cfg\""));
+        assert!(json.contains("\"file\":\"tests/fixtures/cfg/egm_bad/MOC.cfg\""));
+        assert!(json.contains("\"code\":\"rapidvc::config::duplicate_device\""));
+        insta::assert_snapshot!(diags.render_plain(&map, 80));
+    }
+
+    #[test]
+    fn backup_layout_lowercase_names_crlf() {
+        let (map, cfg, diags) = load("egm_backup");
+        assert!(diags.is_empty(), "{}", diags.render_plain(&map, 80));
+        assert!(cfg.sio.unwrap().device("egmsensor").is_some());
+        assert_eq!(
+            cfg.moc.profile("pathcorr").unwrap().level,
+            MotionLevel::Path
+        );
+    }
+
+    #[test]
+    fn no_files_means_default_profile_and_builtin_devices() {
+        let (_, cfg, diags) = load("empty");
+        assert!(diags.is_empty());
+        assert_eq!(cfg.sio, None);
+        assert_eq!(cfg.moc.profiles().len(), 1);
+        assert_eq!(
+            cfg.moc.profile("default").unwrap().level,
+            MotionLevel::Filtering
+        );
+        let e = cfg.moc.profile("pathCorr").unwrap_err();
+        assert!(e.to_string().contains("\"pathCorr\" is not defined"));
+        let table = cfg.device_table(&[]).unwrap();
+        assert_eq!(
+            table.resolve_device("EGMsensor:"),
+            Ok(DeviceTarget::Builtin { pattern: None })
+        );
+    }
+
+    #[test]
+    fn section_alias_option() {
+        let dir = std::env::temp_dir().join(format!("rapidvc-sio-alias-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("SIO.cfg"),
+            "SIO:CFG_1.0:7:0::\n#\nUDP_UC_DEV:\n  -Name \"s\" -Type \"UDPUC\" -RemoteAdress \"10.0.0.1\" -RemotePortNumber 6510\n",
+        )
+        .unwrap();
+        let mut map = SourceMap::new();
+        let mut diags = Diagnostics::new();
+        let mut options = LoadOptions::default();
+        options.sio.device_sections.push("udp_uc_dev".into());
+        let cfg = config::load_dir_with(&dir, &options, &mut map, &mut diags);
+        let plain = config::load_dir(&dir, &mut map, &mut diags);
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert!(diags.is_empty());
+        assert!(cfg.sio.unwrap().device("s").is_some());
+        assert!(plain.sio.unwrap().devices.is_empty());
+    }
+
+    /// The manual's programs run with `--config programs/manual` (the default: the program's
+    /// directory): pathCorr exists, every UdpUc device is the built-in sensor, OptSim and
+    /// wg1sim are simulated seam sensors.
+    #[test]
+    fn manual_programs_config_loads_clean() {
+        let (map, cfg, diags) = load_path("programs/manual");
+        assert!(diags.is_empty(), "{}", diags.render_plain(&map, 80));
+        assert_eq!(cfg.sio, None);
+        assert_eq!(
+            cfg.moc.profile("pathCorr").unwrap().level,
+            MotionLevel::Path
+        );
+        assert!(cfg.moc.profile("default").is_ok());
+        let table = cfg.device_table(&[]).unwrap();
+        for name in ["EGMsensor:", "UCdevice"] {
+            assert_eq!(
+                table.resolve_device(name),
+                Ok(DeviceTarget::Builtin { pattern: None })
+            );
+        }
+        for name in ["OptSim", "wg1sim"] {
+            assert!(matches!(
+                table.resolve_device(name),
+                Ok(DeviceTarget::Ltapp { .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn manual_programs_external_config_loads_clean() {
+        let (map, cfg, diags) = load_path("programs/manual/external");
+        assert!(diags.is_empty(), "{}", diags.render_plain(&map, 80));
+        let (_, default_dir, _) = load_path("programs/manual");
+        assert_eq!(
+            cfg.moc
+                .profiles()
+                .iter()
+                .map(|p| (&p.name, p.level, p.ramp_time, p.kp, p.filter_bandwidth))
+                .collect::<Vec<_>>(),
+            default_dir
+                .moc
+                .profiles()
+                .iter()
+                .map(|p| (&p.name, p.level, p.ramp_time, p.kp, p.filter_bandwidth))
+                .collect::<Vec<_>>(),
+            "programs/manual/external/MOC.cfg must stay a copy of programs/manual/MOC.cfg"
+        );
+        let table = cfg.device_table(&[]).unwrap();
+        for name in ["EGMsensor:", "UCdevice"] {
+            let target = table.resolve_device(name).unwrap();
+            assert!(target.is_external());
+            assert_eq!(
+                target,
+                DeviceTarget::Udp {
+                    remote: "127.0.0.1:6510".parse().unwrap(),
+                    local_port: 0
+                }
+            );
+        }
+        assert!(matches!(
+            table.resolve_device("wg1sim"),
+            Ok(DeviceTarget::Ltapp { .. })
+        ));
+    }
+}

@@ -127,11 +127,14 @@ impl Dumper {
             RoutineKind::Trap => "TRAP".to_string(),
         };
         let params: Vec<String> = r.params.iter().map(param_group).collect();
+        let params = match r.kind {
+            RoutineKind::Trap => String::new(),
+            _ => format!("({})", params.join(", ")),
+        };
         self.line(&format!(
-            "{}{kind} {}({}) {} head {}",
+            "{}{kind} {}{params} {} head {}",
             local(r.local),
             r.name.node,
-            params.join(", "),
             span(r.span),
             span(r.head_span)
         ));

@@ -617,4 +617,33 @@ mod tests {
         assert_eq!(inst.attrs.len(), 2);
         insta::assert_snapshot!(rendered(text));
     }
+
+    mod props {
+        use super::*;
+        use proptest::prelude::*;
+
+        proptest! {
+            /// Any text after a valid header parses without panicking, and every span the
+            /// reader produces lies inside the text.
+            #[test]
+            fn reader_is_total(body in "[-#a-zA-Z0-9_:\" \\\\\n\r\t.é]{0,120}") {
+                let text = format!("EIO:CFG_1.0:6:1::\n{body}");
+                let (_, f, diags) = run(&text);
+                let f = f.unwrap();
+                for sec in &f.sections {
+                    prop_assert!(sec.span.end as usize <= text.len());
+                    for inst in &sec.instances {
+                        prop_assert!(inst.span.end as usize <= text.len());
+                        prop_assert!(!inst.attrs.is_empty());
+                    }
+                }
+                let _ = diags.len();
+            }
+
+            #[test]
+            fn any_first_line(text in ".{0,60}") {
+                let (_, _, _) = run(&text);
+            }
+        }
+    }
 }

@@ -22,7 +22,8 @@ use crate::io::{IoError, MAX_GROUP_BITS, SignalDef, SignalKind};
 use crate::source::{SourceId, Span};
 
 use super::ConfigError;
-use super::cfg::{CfgFile, CfgInstance, CfgValue};
+use super::attr::{keep, num_attr, text_attr, warn_unknown};
+use super::cfg::{CfgFile, CfgInstance};
 
 /// The section that defines signals.
 pub const SIGNAL_SECTION: &str = "EIO_SIGNAL";
@@ -141,93 +142,13 @@ pub fn read(file: &CfgFile, diags: &mut Diagnostics) -> EioConfig {
     out
 }
 
-/// A text attribute (quoted or bare); reports a flag or a number.
-fn text_attr(
-    src: SourceId,
-    inst: &CfgInstance,
-    names: &[&str],
-    diags: &mut Diagnostics,
-) -> Result<Option<(String, Span)>, ()> {
-    let Some(attr) = names.iter().find_map(|n| inst.get(n)) else {
-        return Ok(None);
-    };
-    match &attr.value {
-        CfgValue::Str(s) | CfgValue::Word(s) => Ok(Some((s.clone(), attr.value_or_name_span()))),
-        other => {
-            diags.push(ConfigError::BadValue {
-                src,
-                span: attr.value_or_name_span(),
-                name: attr.name.clone(),
-                expected: "a quoted text".into(),
-                found: found_text(other),
-            });
-            Err(())
-        }
-    }
-}
-
-fn found_text(v: &CfgValue) -> String {
-    match v {
-        CfgValue::Flag => "no value".into(),
-        CfgValue::Str(s) => format!("\"{s}\""),
-        CfgValue::Num(n) => format!("the number {n}"),
-        CfgValue::Word(w) => format!("`{w}`"),
-    }
-}
-
-/// A numeric attribute; reports anything else.
-fn num_attr(
-    src: SourceId,
-    inst: &CfgInstance,
-    name: &str,
-    diags: &mut Diagnostics,
-) -> Result<Option<(f64, Span)>, ()> {
-    let Some(attr) = inst.get(name) else {
-        return Ok(None);
-    };
-    match attr.as_num() {
-        Some(v) => Ok(Some((v, attr.value_or_name_span()))),
-        None => {
-            diags.push(ConfigError::BadValue {
-                src,
-                span: attr.value_or_name_span(),
-                name: attr.name.clone(),
-                expected: "a number".into(),
-                found: found_text(&attr.value),
-            });
-            Err(())
-        }
-    }
-}
-
-/// The value of an attribute reader, noting a reported failure.
-fn keep<T>(r: Result<Option<T>, ()>, failed: &mut bool) -> Option<T> {
-    r.unwrap_or_else(|()| {
-        *failed = true;
-        None
-    })
-}
-
 fn signal(
     src: SourceId,
     section: &str,
     inst: &CfgInstance,
     diags: &mut Diagnostics,
 ) -> Option<EioSignal> {
-    for attr in &inst.attrs {
-        let known = USED
-            .iter()
-            .chain(IGNORED)
-            .any(|k| k.eq_ignore_ascii_case(&attr.name));
-        if !known {
-            diags.push(ConfigError::UnknownAttribute {
-                src,
-                span: attr.name_span,
-                name: attr.name.clone(),
-                section: section.to_string(),
-            });
-        }
-    }
+    warn_unknown(src, section, inst, &[USED, IGNORED], diags);
     let missing = |name: &str, diags: &mut Diagnostics| {
         diags.push(ConfigError::MissingAttribute {
             src,

@@ -238,6 +238,89 @@ pub enum ConfigError {
         name: String,
     },
 
+    /// The same device name twice in SIO.cfg.
+    #[error("device `{name}` is defined twice")]
+    #[diagnostic(
+        code(rapidvc::config::duplicate_device),
+        help(
+            "device names are case-insensitive and a trailing `:` is ignored; the first definition is used"
+        )
+    )]
+    DuplicateDevice {
+        /// The file.
+        src: SourceId,
+        /// The second definition's name.
+        #[label("defined again here")]
+        span: Span,
+        /// The first definition's name.
+        #[label("first defined here")]
+        first: Span,
+        /// The device name.
+        name: String,
+    },
+
+    /// More UdpUc devices than a controller supports.
+    #[error("more than {max} UdpUc devices; device `{name}` is ignored")]
+    #[diagnostic(
+        code(rapidvc::config::too_many_devices),
+        help("a controller communicates with at most {max} UdpUc devices")
+    )]
+    TooManyDevices {
+        /// The file.
+        src: SourceId,
+        /// The name of the first device over the limit.
+        #[label("device number {number}")]
+        span: Span,
+        /// The device name.
+        name: String,
+        /// Its number among the UdpUc devices (1-based).
+        number: usize,
+        /// The limit.
+        max: usize,
+    },
+
+    /// A transmission protocol type rapidvc does not implement (recorded, not usable).
+    #[error(
+        "device `{name}` has type {kind}, which is not supported by rapidvc; only UDPUC devices can be used"
+    )]
+    #[diagnostic(
+        code(rapidvc::config::unsupported_device),
+        severity(Warning),
+        help("{help}")
+    )]
+    UnsupportedDevice {
+        /// The file.
+        src: SourceId,
+        /// The `-Type` value.
+        #[label("not supported")]
+        span: Span,
+        /// The device name.
+        name: String,
+        /// The type as written.
+        kind: String,
+        /// What to do instead.
+        help: String,
+    },
+
+    /// The same External Motion Interface Data name twice in MOC.cfg.
+    #[error("motion profile `{name}` is defined twice")]
+    #[diagnostic(
+        code(rapidvc::config::duplicate_profile),
+        help("profile names are case-insensitive; the first definition is used")
+    )]
+    DuplicateProfile {
+        /// The file.
+        src: SourceId,
+        /// The second definition's name.
+        #[label("defined again here")]
+        span: Span,
+        /// The first definition's name.
+        #[label("first defined here")]
+        first: Span,
+        /// The profile name.
+        name: String,
+    },
+
     /// A section rapidvc reads but whose behaviour it does not implement.
     #[error("{section} is not supported by rapidvc; its instances are ignored")]
     #[diagnostic(code(rapidvc::config::unsupported_section), severity(Warning))]
@@ -270,7 +353,11 @@ impl RapidDiagnostic for ConfigError {
             | ConfigError::InvalidSignal { src, .. }
             | ConfigError::DuplicateSignal { src, .. }
             | ConfigError::EmptyRange { src, .. }
-            | ConfigError::UnsupportedSection { src, .. } => Some(*src),
+            | ConfigError::UnsupportedSection { src, .. }
+            | ConfigError::DuplicateDevice { src, .. }
+            | ConfigError::TooManyDevices { src, .. }
+            | ConfigError::UnsupportedDevice { src, .. }
+            | ConfigError::DuplicateProfile { src, .. } => Some(*src),
         }
     }
 }

@@ -11,6 +11,7 @@ use crate::ast::{self, Ident};
 use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span, Spanned};
 
+mod decl;
 mod expr;
 mod literal;
 mod module;
@@ -124,8 +125,17 @@ impl<'t> Builder<'t, '_> {
         self.error(kind);
     }
 
-    /// The span of the token at byte `pos` (for "expected X before this").
+    /// The span of the token at byte `pos` (for "expected X before this"); at the end of the
+    /// file, the end of the last token.
     pub(crate) fn token_span(&self, pos: usize) -> Span {
+        if self
+            .text
+            .get(pos..)
+            .is_none_or(|rest| rest.trim().is_empty())
+        {
+            let end = recover::prev_token_end(self.text, pos);
+            return Span::new(self.file, end, end);
+        }
         let (_, (s, e)) = recover::describe(self.text, pos);
         Span::new(self.file, s, e)
     }
@@ -152,9 +162,7 @@ impl<'t> Builder<'t, '_> {
                     }
                 }
                 Rule::bad_top => {
-                    if !reported_top || out.modules.is_empty() {
-                        self.skipped(&item, Region::Top);
-                    }
+                    self.skipped(&item, Region::Top);
                     reported_top = true;
                 }
                 _ => {}

@@ -159,6 +159,9 @@ pub enum ParseErrorKind {
         keyword: String,
         /// What should have opened it.
         opener: &'static str,
+        /// Optional hint.
+        #[help]
+        help: Option<&'static str>,
     },
 
     /// `PROC … ENDFUNC` and the like.

@@ -49,22 +49,14 @@ pub(crate) fn expected(rule: Rule) -> Option<Expected> {
         Rule::lbrace | Rule::dims | Rule::index | Rule::open_dims => Token("`{`"),
         Rule::rbrace => Token("`}`"),
         Rule::dot | Rule::component => Token("`.`"),
-        Rule::backslash | Rule::optional_mark => Token("`\\`"),
+        Rule::backslash => Thing("an optional argument (`\\Name`)"),
+        Rule::optional_mark => Token("`\\`"),
         Rule::question | Rule::cond_arg => Token("`?`"),
         Rule::percent | Rule::late_call => Token("`%`"),
         Rule::bar => Token("`|`"),
         Rule::star | Rule::open_dim => Token("`*`"),
 
-        Rule::op_add
-        | Rule::op_sub
-        | Rule::op_mul
-        | Rule::op_div
-        | Rule::op_le
-        | Rule::op_ne
-        | Rule::op_ge
-        | Rule::op_lt
-        | Rule::op_gt
-        | Rule::op_eq
+        Rule::infix_op
         | Rule::kw_div
         | Rule::kw_mod
         | Rule::kw_and
@@ -167,7 +159,7 @@ mod tests {
             expected(Rule::kw_endif).map(Expected::text),
             Some("`ENDIF`")
         );
-        assert_eq!(expected(Rule::op_lt), Some(Expected::Operator));
+        assert_eq!(expected(Rule::infix_op), Some(Expected::Operator));
         assert_eq!(expected(Rule::bad_stmt), None);
     }
 }

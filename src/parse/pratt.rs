@@ -11,8 +11,6 @@
 
 use crate::ast::BinOp;
 
-use super::grammar::Rule;
-
 /// `OR`, `XOR`.
 pub(crate) const LEVEL_OR: u8 = 1;
 /// `AND`; also the level of `NOT`'s operand.
@@ -24,24 +22,24 @@ pub(crate) const LEVEL_ADD: u8 = 4;
 /// `*` `/` `DIV` `MOD`.
 pub(crate) const LEVEL_MUL: u8 = 5;
 
-/// The binary operator of an infix pair and its level, or `None` if the rule is not one.
-pub(crate) fn infix(rule: Rule) -> Option<(BinOp, u8)> {
-    Some(match rule {
-        Rule::kw_or => (BinOp::Or, LEVEL_OR),
-        Rule::kw_xor => (BinOp::Xor, LEVEL_OR),
-        Rule::kw_and => (BinOp::And, LEVEL_AND),
-        Rule::op_lt => (BinOp::Lt, LEVEL_REL),
-        Rule::op_le => (BinOp::Le, LEVEL_REL),
-        Rule::op_eq => (BinOp::Eq, LEVEL_REL),
-        Rule::op_ge => (BinOp::Ge, LEVEL_REL),
-        Rule::op_gt => (BinOp::Gt, LEVEL_REL),
-        Rule::op_ne => (BinOp::Ne, LEVEL_REL),
-        Rule::op_add => (BinOp::Add, LEVEL_ADD),
-        Rule::op_sub => (BinOp::Sub, LEVEL_ADD),
-        Rule::op_mul => (BinOp::Mul, LEVEL_MUL),
-        Rule::op_div => (BinOp::Div, LEVEL_MUL),
-        Rule::kw_div => (BinOp::IntDiv, LEVEL_MUL),
-        Rule::kw_mod => (BinOp::Mod, LEVEL_MUL),
+/// The binary operator written as `text` (an `infix_op` pair) and its level.
+pub(crate) fn infix(text: &str) -> Option<(BinOp, u8)> {
+    Some(match text.as_bytes() {
+        b"+" => (BinOp::Add, LEVEL_ADD),
+        b"-" => (BinOp::Sub, LEVEL_ADD),
+        b"*" => (BinOp::Mul, LEVEL_MUL),
+        b"/" => (BinOp::Div, LEVEL_MUL),
+        b"<" => (BinOp::Lt, LEVEL_REL),
+        b"<=" => (BinOp::Le, LEVEL_REL),
+        b"=" => (BinOp::Eq, LEVEL_REL),
+        b">=" => (BinOp::Ge, LEVEL_REL),
+        b">" => (BinOp::Gt, LEVEL_REL),
+        b"<>" => (BinOp::Ne, LEVEL_REL),
+        _ if text.eq_ignore_ascii_case("AND") => (BinOp::And, LEVEL_AND),
+        _ if text.eq_ignore_ascii_case("OR") => (BinOp::Or, LEVEL_OR),
+        _ if text.eq_ignore_ascii_case("XOR") => (BinOp::Xor, LEVEL_OR),
+        _ if text.eq_ignore_ascii_case("DIV") => (BinOp::IntDiv, LEVEL_MUL),
+        _ if text.eq_ignore_ascii_case("MOD") => (BinOp::Mod, LEVEL_MUL),
         _ => return None,
     })
 }

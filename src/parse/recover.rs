@@ -48,7 +48,21 @@ pub(crate) fn diagnose(
             vec![Expected::Keyword("`MODULE`")],
         ),
         Region::ModuleHead => strict(file, text, start, Rule::diag_module_head, region),
-        Region::RoutineHead => strict(file, text, start, Rule::diag_routine_head, region),
+        Region::RoutineHead => match parse_len(text, start, Rule::diag_routine_head) {
+            Err(f) if f.expected.is_empty() && text.as_bytes().get(f.pos) == Some(&b'(') => {
+                ParseErrorKind::Syntax {
+                    span: Span::new(file, f.pos, f.pos + 1),
+                    expected: "the end of the TRAP head".into(),
+                    found: "`(`".into(),
+                    label: "a TRAP has no parameter list".into(),
+                    help: Some(
+                        "a trap routine is `TRAP name … ENDTRAP`; it takes no parameters".into(),
+                    ),
+                }
+            }
+            Err(f) => syntax(file, text, start, region, f),
+            Ok(_) => strict(file, text, start, Rule::diag_routine_head, region),
+        },
         Region::Field => strict(file, text, start, Rule::record_field, region),
         Region::Statement if is_decl => match parse_len(text, start, Rule::data_decl) {
             Ok(len) => ParseErrorKind::MisplacedDeclaration {
@@ -169,11 +183,47 @@ fn expected_at(
     }
     items.sort();
     items.dedup();
+    // Where an operand may start, list "an expression" rather than its many first tokens.
+    if items.contains(&Expected::Thing("a name")) && items.contains(&Expected::Thing("a number")) {
+        items.retain(|e| {
+            !matches!(
+                e,
+                Expected::Thing("a name" | "a number" | "a string")
+                    | Expected::Token("`(`" | "`[`")
+                    | Expected::Keyword("`TRUE`" | "`FALSE`" | "`NOT`")
+            )
+        });
+        items.push(Expected::Thing("an expression"));
+        items.sort();
+        items.dedup();
+    }
+    if items.contains(&Expected::Thing("an expression")) {
+        items.retain(|e| *e != Expected::Thing("a name"));
+    }
     let then = items.contains(&Expected::Keyword("`THEN`"));
     let semi = items.contains(&Expected::Token("`;`"));
-    // After `IF cond`, the compact form makes "a statement" valid too; `THEN` is what is meant.
-    if then || items.iter().any(|e| matches!(e, Expected::Closer(_))) {
+    // After `IF cond` (or `WHILE cond`), `THEN` (`DO`) is what is meant, although the compact
+    // IF makes any simple statement valid there too.
+    for kw in ["`THEN`", "`DO`"] {
+        if items.contains(&Expected::Keyword(kw)) {
+            items.retain(|e| *e == Expected::Keyword(kw) || *e == Expected::Operator);
+        }
+    }
+    if items.iter().any(|e| matches!(e, Expected::Closer(_))) {
         items.retain(|e| *e != Expected::Thing("a statement"));
+    }
+    // Accesses and calls that could continue a name are rarely what is missing.
+    let ends = ["`;`", "`,`", "`)`", "`]`", "`}`"];
+    if items
+        .iter()
+        .any(|e| matches!(e, Expected::Token(t) if ends.contains(t)))
+    {
+        items.retain(|e| {
+            !matches!(
+                e,
+                Expected::Token("`(`" | "`.`" | "`{`" | "`:=`" | "`:`" | "`[`")
+            )
+        });
     }
     let semi_text = match region {
         Region::Statement => "`;` after the statement",
@@ -198,13 +248,17 @@ fn expected_at(
     }
     let expected = join_or(&words);
     let (mut found, found_span) = describe(text, pos);
-    if words.contains(&"a name") && is_reserved(text.get(found_span.0..found_span.1).unwrap_or(""))
-    {
+    let wants_name = ["a name", "a statement", "an expression"]
+        .iter()
+        .any(|w| words.contains(w));
+    if wants_name && is_reserved(text.get(found_span.0..found_span.1).unwrap_or("")) {
         found = format!("the reserved word {found}");
     }
     // A missing `;` at the end of a line: point at the end of that line, not at the next one.
     let prev = prev_token_end(text, pos);
-    let (span, label) = if semi && text.get(prev..pos).is_some_and(|s| s.contains('\n')) {
+    let at_end = text.get(pos..).is_none_or(|rest| rest.trim().is_empty());
+    let (span, label) = if at_end || (semi && text.get(prev..pos).is_some_and(|s| s.contains('\n')))
+    {
         (
             Span::new(file, prev, prev),
             format!("expected {} here", words[0]),
@@ -215,10 +269,11 @@ fn expected_at(
             format!("expected {}", words[0]),
         )
     };
-    let help = if found.contains("`;`") && region == Region::Statement {
-        None
-    } else if then {
+    let head = first_word_after_local(text, pos);
+    let help = if then {
         Some("a block IF is `IF cond THEN … ENDIF`; the compact form `IF cond stmt;` takes one simple statement".to_string())
+    } else if region == Region::RoutineHead && head.eq_ignore_ascii_case("FUNC") {
+        Some("a function head is `FUNC type name (parameters)`".to_string())
     } else {
         None
     };
@@ -365,6 +420,24 @@ fn shorten(s: &str) -> String {
     }
 }
 
+/// The first word of the line holding `pos`, after an optional `LOCAL`.
+fn first_word_after_local(text: &str, pos: usize) -> &str {
+    let line_start = text
+        .get(..pos)
+        .and_then(|t| t.rfind('\n'))
+        .map_or(0, |i| i + 1);
+    let rest = text.get(line_start..).unwrap_or("");
+    let mut start = line_start + rest.len() - rest.trim_start().len();
+    let w = first_word(text, start);
+    if w.eq_ignore_ascii_case("LOCAL") {
+        start += w.len();
+        let rest = text.get(start..).unwrap_or("");
+        start += rest.len() - rest.trim_start().len();
+        return first_word(text, start);
+    }
+    w
+}
+
 fn first_word(text: &str, start: usize) -> &str {
     let rest = text.get(start..).unwrap_or("");
     let n = rest
@@ -432,7 +505,7 @@ mod tests {
     fn previous_token_skips_comments() {
         let t = "x := 1 ! a \"comment\"\r\n  y";
         assert_eq!(prev_token_end(t, t.len() - 1), 6);
-        assert_eq!(prev_token_end("a \"!\" b", 7), 5);
+        assert_eq!(prev_token_end("a \"!\" b", 6), 5);
     }
 
     #[test]

@@ -752,4 +752,39 @@ mod tests {
         assert_eq!(str_to_pos(&format_pos(&p)), Some(p));
         assert_eq!(str_to_bool(format_bool(false)), Some(false));
     }
+
+    mod props {
+        use super::super::*;
+        use proptest::prelude::*;
+
+        proptest! {
+            /// TPWrite \Num text reads back within the 6 printed digits (or the integer rule).
+            #[test]
+            fn format_num_reads_back(v in proptest::num::f32::NORMAL | proptest::num::f32::ZERO) {
+                let back = str_to_num(&format_num(v)).unwrap() as f64;
+                let v = v as f64;
+                let tol = (v.abs() * 5.01e-6).max(0.0000051);
+                prop_assert!((back - v).abs() <= tol, "{} -> {}", v, back);
+            }
+
+            /// NumToStr reads back within half a unit of the last decimal.
+            #[test]
+            fn num_to_str_reads_back(v in -1e6f32..1e6f32, dec in 0i32..6) {
+                let text = num_to_str(v, dec, false).unwrap();
+                let back = text.parse::<f64>().unwrap();
+                let tol = 0.5 * 10f64.powi(-dec) + (v as f64).abs() * 1.2e-7;
+                prop_assert!((back - v as f64).abs() <= tol, "{} {} -> {}", v, dec, text);
+                let decimals = text.split_once('.').map(|(_, f)| f.len()).unwrap_or(0);
+                prop_assert_eq!(decimals as i32, dec);
+            }
+
+            /// The StrToVal parser never panics and never accepts trailing garbage.
+            #[test]
+            fn parse_value_total(text in ".{0,40}") {
+                if let Some(v) = parse_value(&text) {
+                    prop_assert!(!matches!(v, LitValue::List(ref l) if l.is_empty()));
+                }
+            }
+        }
+    }
 }

@@ -488,4 +488,38 @@ mod tests {
             [-3.0, 6.0, -3.0]
         );
     }
+
+    mod props {
+        use super::super::*;
+        use proptest::prelude::*;
+
+        fn close(a: &[f64], b: &[f64], eps: f64) -> bool {
+            a.iter().zip(b).all(|(x, y)| (x - y).abs() < eps)
+        }
+
+        proptest! {
+            #[test]
+            fn euler_round_trip(z in -179.0f64..179.0, y in -89.0f64..89.0, x in -179.0f64..179.0) {
+                let q = orient_zyx(z, y, x).unwrap();
+                prop_assert!(q[0] >= 0.0);
+                let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+                prop_assert!((n - 1.0).abs() < 1e-12);
+                prop_assert!(close(&euler_zyx_all(&q).unwrap(), &[z, y, x], 1e-7));
+            }
+
+            #[test]
+            fn pose_times_inverse_is_identity(
+                t in proptest::array::uniform3(-2000.0f64..2000.0),
+                a in proptest::array::uniform3(-180.0f64..180.0),
+            ) {
+                let p = Pose { trans: t, rot: orient_zyx(a[0], a[1], a[2]).unwrap() };
+                let id = pose_mult(&p, &pose_inv(&p).unwrap()).unwrap();
+                prop_assert!(close(&id.trans, &[0.0; 3], 1e-9));
+                prop_assert!((id.rot[0].abs() - 1.0).abs() < 1e-12);
+                let v = [1.0, -2.0, 3.0];
+                let back = pose_vect(&pose_inv(&p).unwrap(), &pose_vect(&p, &v).unwrap()).unwrap();
+                prop_assert!(close(&back, &v, 1e-9));
+            }
+        }
+    }
 }

@@ -55,7 +55,10 @@ impl Builder<'_, '_> {
         let (mut lhs, mut lhs_depth) = self.operand(it, min, at_start, depth, whole)?;
         let mut last_rel = false;
         while let Some(op) = it.peek() {
-            let Some((bin, level)) = pratt::infix(op.as_rule()) else {
+            if op.as_rule() != Rule::infix_op {
+                break;
+            }
+            let Some((bin, level)) = pratt::infix(op.as_str()) else {
                 break;
             };
             if level < min {
@@ -88,15 +91,15 @@ impl Builder<'_, '_> {
     ) -> Built {
         let p = it.next()?;
         let span = self.span(&p);
-        let unary = match p.as_rule() {
-            Rule::kw_not => {
+        let unary = match (p.as_rule(), p.as_str()) {
+            (Rule::prefix_op, "-") => Some((UnaryOp::Neg, pratt::sign_operand_level(min))),
+            (Rule::prefix_op, "+") => Some((UnaryOp::Plus, pratt::sign_operand_level(min))),
+            (Rule::prefix_op, _) => {
                 if !at_start {
                     self.error(ParseErrorKind::MisplacedNot { span });
                 }
                 Some((UnaryOp::Not, LEVEL_AND.max(min)))
             }
-            Rule::op_sub => Some((UnaryOp::Neg, pratt::sign_operand_level(min))),
-            Rule::op_add => Some((UnaryOp::Plus, pratt::sign_operand_level(min))),
             _ => None,
         };
         if let Some((op, level)) = unary {
@@ -142,6 +145,7 @@ impl Builder<'_, '_> {
                     d + 1,
                 ))
             }
+            Rule::literal_aggregate => self.literal_aggregate(&p, depth),
             Rule::aggregate => {
                 let (items, d) = self.expr_list(p.into_inner(), depth)?;
                 Some((

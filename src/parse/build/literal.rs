@@ -2,6 +2,8 @@
 //! `\hh` escapes).
 
 use super::Builder;
+use crate::ast::{Expr, ExprKind, UnaryOp};
+use crate::parse::MAX_EXPR_DEPTH;
 use crate::parse::error::ParseErrorKind;
 use crate::parse::grammar::Pair;
 use crate::source::Span;
@@ -12,13 +14,17 @@ const NUM_MAX: f64 = f32::MAX as f64;
 impl Builder<'_, '_> {
     /// The value of a `number` pair; out-of-range values are reported (and kept as parsed).
     pub(crate) fn number(&mut self, p: &Pair<'_>) -> f64 {
-        let text = p.as_str();
+        self.number_text(p.as_str(), self.span(p))
+    }
+
+    /// The value of the number literal `text` written at `span`.
+    pub(crate) fn number_text(&mut self, text: &str, span: Span) -> f64 {
         let value = parse_number(text);
         match value {
             Some(v) if v.is_finite() && v.abs() <= NUM_MAX => v,
             _ => {
                 self.error(ParseErrorKind::NumberOutOfRange {
-                    span: self.span(p),
+                    span,
                     text: text.to_string(),
                 });
                 value.unwrap_or(f64::INFINITY)
@@ -29,8 +35,11 @@ impl Builder<'_, '_> {
     /// The value of a `string` pair with escapes decoded; invalid escapes are reported and
     /// kept as written.
     pub(crate) fn string(&mut self, p: &Pair<'_>) -> String {
-        let raw = p.as_str();
-        let start = p.as_span().start();
+        self.string_text(p.as_str(), p.as_span().start())
+    }
+
+    /// The value of the string literal `raw` (with its quotes) written at byte `start`.
+    pub(crate) fn string_text(&mut self, raw: &str, start: usize) -> String {
         let inner = raw.get(1..raw.len().saturating_sub(1)).unwrap_or("");
         let mut out = String::with_capacity(inner.len());
         let mut it = inner.char_indices().peekable();
@@ -55,12 +64,19 @@ impl Builder<'_, '_> {
                         it.next();
                         out.push(v as char);
                     } else {
-                        let len = 1 + rest
-                            .chars()
+                        // The backslash, the hex digits that follow, and the first other
+                        // character (what makes the escape invalid), if not the quote.
+                        let hex = rest
+                            .bytes()
                             .take(2)
-                            .take_while(|c| *c != '"')
-                            .map(char::len_utf8)
-                            .sum::<usize>();
+                            .take_while(u8::is_ascii_hexdigit)
+                            .count();
+                        let other = rest[hex..]
+                            .chars()
+                            .next()
+                            .filter(|c| *c != '"' && hex < 2)
+                            .map_or(0, char::len_utf8);
+                        let len = 1 + hex + other;
                         let at = start + 1 + i;
                         self.error(ParseErrorKind::InvalidEscape {
                             span: Span::new(self.file, at, at + len),
@@ -73,6 +89,176 @@ impl Builder<'_, '_> {
             }
         }
         out
+    }
+}
+
+impl Builder<'_, '_> {
+    /// A `literal_aggregate` pair: the grammar has checked its shape; read it here.
+    pub(crate) fn literal_aggregate(
+        &mut self,
+        p: &Pair<'_>,
+        depth: usize,
+    ) -> Option<(Expr, usize)> {
+        let text = p.as_str();
+        let base = p.as_span().start();
+        let mut pos = 0;
+        self.lit_aggregate(text, base, &mut pos, depth)
+    }
+
+    fn lit_aggregate(
+        &mut self,
+        t: &str,
+        base: usize,
+        pos: &mut usize,
+        depth: usize,
+    ) -> Option<(Expr, usize)> {
+        if depth > MAX_EXPR_DEPTH {
+            self.error(ParseErrorKind::ExpressionTooComplex {
+                span: Span::new(self.file, base + *pos, base + t.len()),
+                limit: MAX_EXPR_DEPTH,
+            });
+            return None;
+        }
+        let start = *pos;
+        *pos += 1; // `[`
+        let mut items = Vec::new();
+        let mut max = 0;
+        loop {
+            skip_trivia(t, pos);
+            let (item, d) = self.lit_item(t, base, pos, depth)?;
+            max = max.max(d);
+            items.push(item);
+            skip_trivia(t, pos);
+            match t.as_bytes().get(*pos) {
+                Some(b',') => *pos += 1,
+                _ => break,
+            }
+        }
+        *pos += 1; // `]`
+        Some((
+            Expr {
+                kind: ExprKind::Aggregate(items),
+                span: Span::new(self.file, base + start, base + *pos),
+            },
+            max + 1,
+        ))
+    }
+
+    fn lit_item(
+        &mut self,
+        t: &str,
+        base: usize,
+        pos: &mut usize,
+        depth: usize,
+    ) -> Option<(Expr, usize)> {
+        let b = t.as_bytes();
+        let start = *pos;
+        let file = self.file;
+        let span = |end: usize| Span::new(file, base + start, base + end);
+        match *b.get(start)? {
+            b'[' => self.lit_aggregate(t, base, pos, depth + 1),
+            b'"' => {
+                let mut i = start + 1;
+                while i < b.len() {
+                    if b[i] == b'"' {
+                        if b.get(i + 1) == Some(&b'"') {
+                            i += 2;
+                            continue;
+                        }
+                        break;
+                    }
+                    i += 1;
+                }
+                *pos = i + 1;
+                let v = self.string_text(&t[start..*pos], base + start);
+                Some((
+                    Expr {
+                        kind: ExprKind::Str(v),
+                        span: span(*pos),
+                    },
+                    1,
+                ))
+            }
+            c @ (b'+' | b'-') => {
+                *pos += 1;
+                skip_trivia(t, pos);
+                let (e, d) = self.lit_item(t, base, pos, depth)?;
+                let op = if c == b'-' {
+                    UnaryOp::Neg
+                } else {
+                    UnaryOp::Plus
+                };
+                let span = span(*pos);
+                Some((
+                    Expr {
+                        kind: ExprKind::Unary {
+                            op,
+                            expr: Box::new(e),
+                        },
+                        span,
+                    },
+                    d + 1,
+                ))
+            }
+            c if c.is_ascii_alphabetic() => {
+                let n = t[start..]
+                    .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .unwrap_or(t.len() - start);
+                *pos = start + n;
+                let v = t[start..*pos].eq_ignore_ascii_case("TRUE");
+                Some((
+                    Expr {
+                        kind: ExprKind::Bool(v),
+                        span: span(*pos),
+                    },
+                    1,
+                ))
+            }
+            _ => {
+                let mut i = start;
+                while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
+                    i += 1;
+                }
+                if i < b.len() && (b[i] == b'e' || b[i] == b'E') {
+                    i += 1;
+                    if i < b.len() && (b[i] == b'+' || b[i] == b'-') {
+                        i += 1;
+                    }
+                    while i < b.len() && b[i].is_ascii_digit() {
+                        i += 1;
+                    }
+                }
+                *pos = i;
+                let v = self.number_text(&t[start..i], span(i));
+                Some((
+                    Expr {
+                        kind: ExprKind::Num(v),
+                        span: span(i),
+                    },
+                    1,
+                ))
+            }
+        }
+    }
+}
+
+/// Skip white space and comments inside a literal aggregate.
+fn skip_trivia(t: &str, pos: &mut usize) {
+    let b = t.as_bytes();
+    while let Some(&c) = b.get(*pos) {
+        match c {
+            b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C => *pos += 1,
+            b'!' => {
+                while *pos < b.len() && b[*pos] != b'\n' {
+                    *pos += 1;
+                }
+            }
+            c if c >= 0x80 => match t[*pos..].chars().next() {
+                Some(ch) if ch.is_whitespace() => *pos += ch.len_utf8(),
+                _ => return,
+            },
+            _ => return,
+        }
     }
 }
 

@@ -123,24 +123,9 @@ impl Builder<'_, '_> {
                         }
                     }
                 }
-                Rule::stray_kw => {
-                    // After another error in this routine, a stray keyword is most likely a
-                    // consequence of it; report only the first cause.
-                    if self.errors == errors_before {
-                        let kw = item.as_str().to_string();
-                        let opener = match kw.to_ascii_uppercase().as_str() {
-                            "ENDWHILE" => "WHILE",
-                            "ENDFOR" => "FOR",
-                            "ENDTEST" | "CASE" | "DEFAULT" => "TEST",
-                            _ => "IF",
-                        };
-                        self.error(ParseErrorKind::StrayKeyword {
-                            span: self.span(&item),
-                            keyword: kw,
-                            opener,
-                        });
-                    }
-                }
+                // After another error in this routine, a stray keyword is most likely a
+                // consequence of it; report only the first cause.
+                Rule::stray_kw if self.errors == errors_before => self.stray_keyword(&item),
                 Rule::routine_end => end = item.into_inner().next(),
                 _ => {}
             }
@@ -178,6 +163,25 @@ impl Builder<'_, '_> {
             span,
             head_span,
         })
+    }
+
+    fn stray_keyword(&mut self, item: &Pair<'_>) {
+        let kw = item.as_str().to_string();
+        let opener = match kw.to_ascii_uppercase().as_str() {
+            "ENDWHILE" => "WHILE",
+            "ENDFOR" => "FOR",
+            "ENDTEST" | "CASE" | "DEFAULT" | "<CSE>" => "TEST",
+            _ => "IF",
+        };
+        let help = (opener == "IF").then_some(
+            "did you forget `THEN`? `IF cond stmt;` is a complete compact IF, without ENDIF",
+        );
+        self.error(ParseErrorKind::StrayKeyword {
+            span: self.span(item),
+            keyword: kw,
+            opener,
+            help,
+        });
     }
 
     /// A routine head: kind, name, parameters, head span and the PROC/FUNC/TRAP keyword.
@@ -343,17 +347,12 @@ impl Builder<'_, '_> {
                 help: "LOCAL is only allowed on module-level data and routines",
             });
         }
+        // (`TASK` on VAR or CONST is reported with the declaration itself.)
         if d.storage == Storage::Pers {
             self.error(ParseErrorKind::InvalidModifier {
                 span: word_span("PERS"),
                 keyword: "PERS".into(),
                 help: "routine data is VAR or CONST; declare persistents at module level",
-            });
-        } else if d.task {
-            self.error(ParseErrorKind::InvalidModifier {
-                span: word_span("TASK"),
-                keyword: "TASK".into(),
-                help: "TASK is only allowed on module-level PERS data",
             });
         }
     }

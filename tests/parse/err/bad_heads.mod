@@ -1,0 +1,15 @@
+MODULE 123
+  PROC (num a)
+    Stop;
+  ENDPROC
+  FUNC check()
+    RETURN TRUE;
+  ENDFUNC
+  TRAP onIt(num x)
+  ENDTRAP
+  PROC fine()
+    Stop;
+  ENDPROC
+ENDMODULE
+MODULE Attrs(SYSMODULE, FASTMODE)
+ENDMODULE

@@ -1,0 +1,6 @@
+MODULE Test
+  VAR num case := 1;
+  PROC Step()
+    Stop;
+  ENDPROC
+ENDMODULE

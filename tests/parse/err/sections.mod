@@ -1,0 +1,13 @@
+MODULE Sections
+  PROC main()
+    Stop;
+  UNDO
+    Stop;
+  ERROR
+    RETRY;
+  ERROR
+    TRYNEXT;
+  BACKWARD
+    Stop;
+  ENDPROC
+ENDMODULE
