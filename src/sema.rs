@@ -76,6 +76,20 @@ pub fn analyze(
     env: &Env,
     diags: &mut Diagnostics,
 ) -> Option<Program> {
+    let (program, errors) = analyze_to_vec(inputs, natives, env);
+    for e in errors {
+        diags.push(e);
+    }
+    program
+}
+
+/// Like [`analyze`], returning the diagnostics as [`SemaError`]s (sorted by position) for
+/// callers that inspect them.
+pub fn analyze_to_vec(
+    inputs: &[Input<'_>],
+    natives: Arc<[NativeSig]>,
+    env: &Env,
+) -> (Option<Program>, Vec<SemaError>) {
     let mut c = Checker::new(natives);
     for inp in inputs {
         for m in &inp.file.modules {
@@ -90,14 +104,10 @@ pub fn analyze(
     c.lower_global_inits();
     let init_order = c.init_order();
     c.lower_routines();
-    let mut has_errors = false;
     c.errors.sort_by_key(|e| (e.span.source, e.span.start));
-    for e in c.errors {
-        has_errors |= !e.is_warning();
-        diags.push(e);
-    }
-    if has_errors {
-        return None;
+    let errors = std::mem::take(&mut c.errors);
+    if errors.iter().any(|e| !e.is_warning()) {
+        return (None, errors);
     }
     let mut procs_by_name: HashMap<String, Vec<RoutineId>> = HashMap::new();
     for (i, r) in c.routines.iter().enumerate() {
@@ -106,7 +116,7 @@ pub fn analyze(
             .or_default()
             .push(RoutineId(i as u32));
     }
-    Some(Program {
+    let program = Program {
         types: c.types,
         modules: c.modules,
         globals: c.globals,
@@ -114,7 +124,8 @@ pub fn analyze(
         natives: c.natives,
         init_order,
         procs_by_name,
-    })
+    };
+    (Some(program), errors)
 }
 
 /// What a local name in a routine stands for.

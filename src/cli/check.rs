@@ -84,10 +84,14 @@ pub fn run(args: CheckArgs) -> ExitCode {
         // files parse: the configuration next to them gives the I/O signals.
         Depth::Full => {
             if !diags.has_errors() && !io_failed {
-                let dir = super::program::config_dir(None, &args.paths);
-                let signals = super::program::load_signals(dir.as_deref(), &mut map, &mut diags);
                 let registry = crate::interp::Registry::standard();
-                super::program::check(&parsed, &mut map, &signals, &registry, &mut diags);
+                super::program::check_files(
+                    &parsed,
+                    &args.paths,
+                    &mut map,
+                    &registry,
+                    &mut diags,
+                );
             }
         }
     }

@@ -111,6 +111,64 @@ pub fn load_signals(
     }
 }
 
+/// The semantic check of `rapidvc check`: the given files are one program (the modules of a
+/// task), unless two files declare the same global name, which means they are independent
+/// programs (a folder such as `programs/manual`): then each file is checked on its own, with
+/// the configuration next to it.
+pub fn check_files(
+    user: &[ast::File],
+    paths: &[PathBuf],
+    sources: &mut SourceMap,
+    registry: &Registry,
+    diags: &mut Diagnostics,
+) {
+    let dir = config_dir(None, paths);
+    let signals = load_signals(dir.as_deref(), sources, diags);
+    let errors = sema_errors(user, sources, &signals, registry);
+    let independent = user.len() > 1
+        && errors.iter().any(|e| {
+            matches!(e.kind, sema::SemaErrorKind::Duplicate { first, .. }
+                if first.source != e.span.source)
+        });
+    if !independent {
+        for e in errors {
+            diags.push(e);
+        }
+        return;
+    }
+    for file in user {
+        let path = PathBuf::from(&sources.get(file.span.source).name);
+        let dir = config_dir(None, std::slice::from_ref(&path));
+        let signals = load_signals(dir.as_deref(), sources, diags);
+        for e in sema_errors(std::slice::from_ref(file), sources, &signals, registry) {
+            diags.push(e);
+        }
+    }
+}
+
+fn sema_errors(
+    user: &[ast::File],
+    sources: &mut SourceMap,
+    signals: &SignalTable,
+    registry: &Registry,
+) -> Vec<sema::SemaError> {
+    let mut diags = Diagnostics::new();
+    let std_files = parse_stdlib(sources, &mut diags);
+    let mut inputs: Vec<sema::Input<'_>> = std_files
+        .iter()
+        .map(|f| sema::Input {
+            file: f,
+            stdlib: true,
+        })
+        .collect();
+    inputs.extend(user.iter().map(|f| sema::Input {
+        file: f,
+        stdlib: false,
+    }));
+    let env = sema::Env::from_signals(signals);
+    sema::analyze_to_vec(&inputs, registry.signatures(), &env).1
+}
+
 /// Run the semantic pass over already parsed user files (plus the stdlib).
 pub fn check(
     user: &[ast::File],
