@@ -114,6 +114,9 @@ pub struct Interp {
     ret: Value,
     /// The error behind a NaN of the NaN-signalling `num` path.
     pending: Option<Unwind>,
+    /// Stack address when the current run started, and how much stack it may use.
+    stack_base: usize,
+    stack_budget: usize,
     errno: i32,
     intno: i32,
     next_booked: i32,
@@ -154,6 +157,8 @@ impl Interp {
             rbp: 0,
             ret: Value::Absent,
             pending: None,
+            stack_base: 0,
+            stack_budget: 1 << 20,
             errno: 0,
             intno: 0,
             next_booked: errnum::BOOK_FIRST,
@@ -199,6 +204,13 @@ impl Interp {
         self.update_poll();
     }
 
+    /// How much of the calling thread's stack a run may use (default 1 MiB, safe on a
+    /// thread with the standard 2 MiB stack); deeper RAPID recursion stops the program with
+    /// a clear error instead of overflowing the stack.
+    pub fn set_stack_budget(&mut self, bytes: usize) {
+        self.stack_budget = bytes;
+    }
+
     /// How many consecutive `RETRY`s of one statement are allowed (default 4).
     pub fn set_retry_limit(&mut self, n: u32) {
         self.retry_limit = n;
@@ -212,6 +224,7 @@ impl Interp {
     /// Initialise module data (VAR, CONST, and PERS without a stored value), in dependency
     /// order. Called by [`Interp::run`] when needed; call it first to override persistents.
     pub fn init(&mut self) -> Result<(), Box<RuntimeError>> {
+        self.stack_base = call::stack_addr();
         let prog = self.prog.clone();
         self.globals = prog
             .globals
@@ -247,6 +260,7 @@ impl Interp {
         if !self.initialised {
             self.init()?;
         }
+        self.stack_base = call::stack_addr();
         let prog = self.prog.clone();
         let Some(rid) = prog.find_proc(entry) else {
             return Err(Box::new(RuntimeError {

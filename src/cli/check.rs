@@ -85,13 +85,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
         Depth::Full => {
             if !diags.has_errors() && !io_failed {
                 let registry = crate::interp::Registry::standard();
-                super::program::check_files(
-                    &parsed,
-                    &args.paths,
-                    &mut map,
-                    &registry,
-                    &mut diags,
-                );
+                super::program::check_files(&parsed, &args.paths, &mut map, &registry, &mut diags);
             }
         }
     }

@@ -49,6 +49,8 @@ pub fn run(args: RunArgs) -> ExitCode {
         .with_sink(print_output);
     let mut it = Interp::new(prog, &loaded.registry, Box::new(host));
     it.set_budget(args.max_steps);
+    // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
+    it.set_stack_budget(6 << 20);
     if let Err(e) = it.init() {
         render::runtime_error(&e, &loaded.sources);
         return ExitCode::from(1);

@@ -81,6 +81,7 @@ pub fn run(args: TestArgs) -> ExitCode {
                 });
             let mut it = Interp::new(prog.clone(), &loaded.registry, Box::new(host));
             it.set_budget(Some(args.max_steps));
+            it.set_stack_budget(6 << 20);
             let res = it.init().and_then(|_| it.run(&name));
             let label = format!("test {} :: {name}", file.display());
             match res {

@@ -11,9 +11,22 @@ use crate::ir::{Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId
 use crate::source::Span;
 
 /// Deepest call nesting before execution is aborted (a runaway recursion guard).
-pub(crate) const MAX_DEPTH: usize = 2000;
+pub(crate) const MAX_DEPTH: usize = 10_000;
+
+/// An address on the current thread's stack (stacks grow down on every supported target).
+#[inline(always)]
+pub(crate) fn stack_addr() -> usize {
+    let marker = 0u8;
+    std::hint::black_box(&marker) as *const u8 as usize
+}
 
 impl Interp {
+    /// Has the Rust stack used since the run started reached the budget?
+    #[inline(always)]
+    fn stack_exhausted(&self) -> bool {
+        self.stack_base.saturating_sub(stack_addr()) > self.stack_budget
+    }
+
     /// Call a simple function (see [`crate::ir::Routine::simple`]) whose result is a `num`,
     /// on the NaN-signalling path: no statement loop, no `Value` results.
     #[inline]
@@ -34,7 +47,7 @@ impl Interp {
         else {
             return self.call_num_general(p, rid, args, span);
         };
-        if self.frames.len() >= MAX_DEPTH {
+        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
             return self.call_num_general(p, rid, args, span);
         }
         let bp = self.stack.len();
@@ -122,11 +135,14 @@ impl Interp {
         span: Span,
     ) -> Exec<Value> {
         let r = p.routine(rid);
-        if self.frames.len() >= MAX_DEPTH {
+        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
             return Err(self.fatal(
                 ErrorKind::Aborted,
                 span,
-                format!("calls nested deeper than {MAX_DEPTH} levels (runaway recursion?)"),
+                format!(
+                    "calls nested {} levels deep: the interpreter's stack is used up (runaway recursion?)",
+                    self.frames.len()
+                ),
             ));
         }
         let bp = self.stack.len();
