@@ -328,6 +328,22 @@ impl<'a> Ctx<'a> {
     pub fn now(&self) -> f64 {
         self.it.host.now()
     }
+
+    /// Wait (in host time, running traps as interrupts arrive) until `cond` holds, polling it
+    /// every `poll` seconds, or until `deadline`; true when `cond` held. For instructions that
+    /// wait for the controller (the robot standing still, an EGM movement converging).
+    pub fn wait_host(
+        &mut self,
+        deadline: Option<f64>,
+        poll: f64,
+        mut cond: impl FnMut(&mut dyn Host) -> Result<bool, super::HostError>,
+    ) -> Exec<bool> {
+        let (p, span) = (self.p, self.span);
+        let mut f = |it: &mut Interp, _: &Program| {
+            cond(it.host.as_mut()).map_err(|e| it.host_error(e, span))
+        };
+        self.it.wait(p, span, deadline, Some(&mut f), poll)
+    }
 }
 
 #[cfg(test)]

@@ -4,9 +4,19 @@
 //! implements [`Host`]. [`VirtualHost`] is a pure counter: `WaitTime 10` advances its clock by
 //! ten seconds at once, so runs are deterministic and take no wall time.
 //!
-//! Motion and EGM (issues 4 and 5) plug in here later as further methods with default
-//! implementations that report the capability as missing; the motion natives then turn that
-//! into a clear run-time error instead of a silent no-op.
+//! Motion and EGM (issues 4 and 5) plug in without touching the interpreter core:
+//! 1. add capability methods to [`Host`] with default implementations that return
+//!    `HostError::fatal("… is not supported by this controller")` (e.g.
+//!    `submit(&mut self, cmd: robot::MotionCommand)`, `standstill(&self) -> bool`,
+//!    `robot_position(&self) -> …`, EGM session calls);
+//! 2. write the natives in `interp/builtins/motion.rs` (and `egm.rs`) against those methods
+//!    through [`super::builtins::Ctx::host`]; a native that must wait (a fine point, `WaitRob`,
+//!    an EGM movement) uses [`super::builtins::Ctx::wait_host`], which keeps running traps;
+//! 3. or, from the controller, swap an implementation with
+//!    [`super::Registry::replace`] (same signature, so programs keep checking).
+//!
+//! Until then the motion and EGM natives fail with "`MoveJ` is not yet supported by rapidvc
+//! (virtual robot: issue 4)": a clear run-time error, never a silent no-op.
 
 use std::fmt;
 use std::sync::Arc;

@@ -81,9 +81,9 @@ impl<'a> Checker<'a> {
                 }
             }
         }
-        for (id, a) in aliases {
+        for (id, a) in &aliases {
             if let Some(base) = self.types.lookup(&a.base.node) {
-                self.types.set_kind(id, TypeKind::Alias(base));
+                self.types.set_kind(*id, TypeKind::Alias(base));
             } else {
                 self.err(
                     K::UnknownType {
@@ -93,13 +93,25 @@ impl<'a> Checker<'a> {
                 );
             }
         }
+        // An alias chain must end in a real type.
+        for (id, a) in aliases {
+            if matches!(self.types.get(self.types.resolve(id)).kind, TypeKind::Alias(_)) {
+                self.err(
+                    K::BadDecl {
+                        why: format!("alias `{}` is defined in terms of itself", a.name.node),
+                    },
+                    a.span,
+                );
+                self.types.set_kind(id, TypeKind::Alias(TypeId::NUM));
+            }
+        }
         self.pending_records = records;
     }
 
     /// Fill in record components (after module data, so sizes may name constants).
     pub(super) fn fill_records(&mut self) {
         let records = std::mem::take(&mut self.pending_records);
-        for (id, m, r) in records {
+        for &(id, m, r) in &records {
             self.cur_module = m;
             let mut fields = Vec::new();
             for f in &r.fields {
@@ -124,6 +136,37 @@ impl<'a> Checker<'a> {
                 },
             );
         }
+        // A record may not contain itself (directly or through other records).
+        for (id, _, r) in records {
+            if self.record_contains(id, id, 0) {
+                self.err(
+                    K::BadDecl {
+                        why: format!("record `{}` contains itself", r.name.node),
+                    },
+                    r.span,
+                );
+                self.types.set_kind(
+                    id,
+                    TypeKind::Record {
+                        fields: Vec::new(),
+                        value: true,
+                    },
+                );
+            }
+        }
+    }
+
+    /// Does record `outer` contain `target` somewhere inside its components?
+    fn record_contains(&self, outer: TypeId, target: TypeId, depth: usize) -> bool {
+        if depth > 64 {
+            return true;
+        }
+        let Some(fields) = self.types.fields(outer) else {
+            return false;
+        };
+        fields
+            .iter()
+            .any(|f| f.ty.base == target || self.record_contains(f.ty.base, target, depth + 1))
     }
 
     /// Does a stdlib declaration describe exactly a built-in type?
