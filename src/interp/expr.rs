@@ -177,10 +177,8 @@ impl Interp {
                 crate::ir::Root::Global(g) => self.globals.get(g as usize),
                 crate::ir::Root::Ref(_) => None,
             };
-            if let Some(Value::Array(a)) = arr {
-                let i = x as i32;
+            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(x)) {
                 if a.rank == 1
-                    && i as f32 == x
                     && i >= 1
                     && i as u32 <= a.dims[0]
                     && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
@@ -224,14 +222,15 @@ impl Interp {
     }
 
     /// `x MOD k` / `x DIV k` with a constant integer `k` ≠ 0.
-    #[inline]
+    #[inline(never)]
     fn nf_mod_k(&mut self, p: &Program, a: &Expr, k: i32, is_mod: bool, span: Span) -> f32 {
         let x = match self.num_leaf(a) {
             Some(x) => x,
             None => self.nf(p, a),
         };
-        let xi = x as i32;
-        if xi as f32 == x && xi != i32::MIN {
+        if let Some(xi) = super::value::f32_int(x)
+            && xi != i32::MIN
+        {
             return if is_mod { xi % k } else { xi / k } as f32;
         }
         if x.is_nan() {
@@ -243,7 +242,7 @@ impl Interp {
         }
     }
 
-    #[inline]
+    #[inline(never)]
     fn nf_binary(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> f32 {
         let x = match self.num_leaf(a) {
             Some(x) => x,
@@ -272,8 +271,10 @@ impl Interp {
             }
             _ => {
                 // Fast path: integer operands that fit i32 (every exact num integer does).
-                let (xi, yi) = (x as i32, y as i32);
-                if xi as f32 == x && yi as f32 == y && yi != 0 && xi != i32::MIN {
+                if let (Some(xi), Some(yi)) = (super::value::f32_int(x), super::value::f32_int(y))
+                    && yi != 0
+                    && xi != i32::MIN
+                {
                     return if op == BinOp::NumMod {
                         xi % yi
                     } else {

@@ -175,11 +175,8 @@ impl Interp {
     /// Evaluate an array index: a `num` with an integer value.
     #[inline(always)]
     pub(crate) fn eval_index(&mut self, p: &Program, e: &crate::ir::Expr) -> Exec<i64> {
-        if let Some(x) = self.num_leaf(e) {
-            let i = x as i32;
-            if i as f32 == x {
-                return Ok(i as i64);
-            }
+        if let Some(i) = self.num_leaf(e).and_then(super::value::f32_int) {
+            return Ok(i as i64);
         }
         self.eval_index_slow(p, e)
     }

@@ -135,6 +135,25 @@ impl Value {
     }
 }
 
+/// The integer a `num` holds, if it holds one that fits `i32` (checked on the bits, with no
+/// float round trip: the hot path of array indices and `DIV`/`MOD`).
+#[inline(always)]
+pub fn f32_int(x: f32) -> Option<i32> {
+    let b = x.to_bits();
+    let e = ((b >> 23) & 0xff) as i32 - 127;
+    if e < 0 {
+        // |x| < 1: only ±0 is an integer.
+        return if b << 1 == 0 { Some(0) } else { None };
+    }
+    if e >= 31 {
+        return None;
+    }
+    if e < 23 && b & ((1u32 << (23 - e)) - 1) != 0 {
+        return None;
+    }
+    Some(x as i32)
+}
+
 /// Structural equality as RAPID's `=`: numbers by value (num and dnum compare as numbers),
 /// records and arrays component-wise.
 pub fn values_equal(a: &Value, b: &Value) -> bool {
@@ -197,6 +216,37 @@ fn default_scalar(types: &TypeTable, id: TypeId) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn integer_nums_are_recognised_on_their_bits() {
+        for x in [
+            0.0f32,
+            -0.0,
+            1.0,
+            -1.0,
+            2.0,
+            100.0,
+            8_388_608.0,
+            16_777_216.0,
+            -1.0e9,
+        ] {
+            assert_eq!(f32_int(x), Some(x as i32), "{x}");
+        }
+        // i32::MIN and beyond are left to the slow path.
+        for x in [
+            0.5f32,
+            -0.25,
+            1.5,
+            1e-30,
+            8_388_607.5,
+            3.0e9,
+            -2_147_483_648.0,
+            f32::NAN,
+            f32::INFINITY,
+        ] {
+            assert_eq!(f32_int(x), None, "{x}");
+        }
+    }
 
     #[test]
     fn value_is_small() {

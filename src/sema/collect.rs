@@ -95,7 +95,10 @@ impl<'a> Checker<'a> {
         }
         // An alias chain must end in a real type.
         for (id, a) in aliases {
-            if matches!(self.types.get(self.types.resolve(id)).kind, TypeKind::Alias(_)) {
+            if matches!(
+                self.types.get(self.types.resolve(id)).kind,
+                TypeKind::Alias(_)
+            ) {
                 self.err(
                     K::BadDecl {
                         why: format!("alias `{}` is defined in terms of itself", a.name.node),
