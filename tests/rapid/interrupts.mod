@@ -13,6 +13,20 @@ MODULE interrupts
     edges := edges + 1;
   ENDTRAP
 
+  TRAP on_fail
+    VAR num z := 0;
+    edges := 1 / z;
+    edges := 99;
+  ERROR
+    edges := 7;
+    TRYNEXT;
+  ENDTRAP
+
+  TRAP on_level
+    edges := edges + 1;
+    TPWrite "analog crossed: " \Num:=AOutput(ao1);
+  ENDTRAP
+
   PROC test_timer_during_wait()
     ticks := 0;
     CONNECT tick WITH on_tick;
@@ -135,5 +149,39 @@ MODULE interrupts
     WaitDI di1, 1 \MaxTime:=1;
   ERROR
     Assert ERRNO = ERR_WAIT_MAXTIME;
+  ENDPROC
+  PROC test_trap_error_handler()
+    VAR intnum t;
+    edges := 0;
+    CONNECT t WITH on_fail;
+    ITimer \Single, 0.1, t;
+    WaitTime 0.2;
+    Assert edges = 99 \Msg:="the trap's handler took the error and went on";
+    IDelete t;
+  ENDPROC
+
+  PROC test_analog_interrupt()
+    VAR intnum a;
+    edges := 0;
+    SetAO ao1, 0;
+    CONNECT a WITH on_level;
+    ISignalAO ao1, AIO_ABOVE_HIGH, 50, 0, 0, a;
+    SetAO ao1, 10;
+    Assert edges = 0;
+    SetAO ao1, 60;
+    Assert edges = 1;
+    SetAO ao1, 70;
+    Assert edges = 1 \Msg:="only the crossing triggers";
+    SetAO ao1, 0;
+    SetAO ao1, 80;
+    Assert edges = 2;
+    IDelete a;
+  ENDPROC
+
+  PROC test_intno_in_trap()
+    VAR intnum t;
+    CONNECT t WITH on_tick;
+    Assert t > 0;
+    IDelete t;
   ENDPROC
 ENDMODULE

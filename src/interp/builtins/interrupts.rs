@@ -73,7 +73,7 @@ pub(super) fn register(r: &mut Registry) {
             }
             let high = cx.f64(4)?;
             let low = cx.f64(5)?;
-            let no = intno(cx, 10)?;
+            let no = intno(cx, 9)?;
             let span = cx.span;
             let trig = Trigger::Analog {
                 cond: cond as u8,
