@@ -186,8 +186,6 @@ pub(crate) struct Checker<'a> {
     pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
     /// Routines with a placeholder parameter (their body stops the program).
     incomplete: std::collections::HashSet<usize>,
-    /// Kind of the callee whose arguments are being lowered.
-    callee_kind: call::CalleeKind,
 }
 
 impl<'a> Checker<'a> {
@@ -220,7 +218,6 @@ impl<'a> Checker<'a> {
             const_state: HashMap::new(),
             pending_records: Vec::new(),
             incomplete: Default::default(),
-            callee_kind: Default::default(),
         }
     }
 

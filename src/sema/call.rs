@@ -43,16 +43,6 @@ pub(crate) struct PView {
     pub group: u16,
 }
 
-/// Whether the routine being called is a native (for read-only predefined data).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub(crate) enum CalleeKind {
-    /// A user routine.
-    #[default]
-    User,
-    /// A built-in.
-    Native,
-}
-
 /// Who is called.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Callee {
@@ -162,23 +152,7 @@ impl Checker<'_> {
             Callee::User(r) => self.user_view(r),
             Callee::Native(n) => self.native_view(n),
         };
-        let saved_kind = self.callee_kind;
-        self.callee_kind = match callee {
-            Callee::User(_) => CalleeKind::User,
-            Callee::Native(_) => CalleeKind::Native,
-        };
-        let out = self.lower_args_inner(&params, args, name, span);
-        self.callee_kind = saved_kind;
-        out
-    }
 
-    fn lower_args_inner(
-        &mut self,
-        params: &[PView],
-        args: &[ast::Arg],
-        name: &ast::Ident,
-        span: Span,
-    ) -> Option<Vec<Arg>> {
         let callee_name = name.node.clone();
         let mut out: Vec<Option<Arg>> = vec![None; params.len()];
         let mut next_req = 0usize;
@@ -430,11 +404,9 @@ impl Checker<'_> {
                     (PMode::Pers | PMode::InOut, Obj::Pers | Obj::RefParam(ParamMode::Pers)) => {
                         info.whole
                     }
-                    // Predefined data may be read through PERS parameters of built-ins
-                    // (`MoveL p, v100, fine, tool0`), never changed by user routines.
-                    (PMode::Pers, Obj::ReadOnlyPers) => {
-                        info.whole && matches!(self.callee_kind, CalleeKind::Native)
-                    }
+                    // Predefined data is passed on as a persistent (`MoveL p, v100, fine,
+                    // tool0`, `MoveHome tool0;`); only assigning it directly is refused.
+                    (PMode::Pers | PMode::InOut, Obj::ReadOnlyPers) => info.whole,
                     _ => false,
                 };
                 if !allowed {

@@ -150,6 +150,17 @@ MODULE routines
     Assert ERRNO = ERR_NOTPRES;
   ENDPROC
 
+  PROC use_tool(PERS tooldata t, \PERS wobjdata w)
+    Assert t.robhold;
+    IF Present(w) Assert NOT w.robhold;
+  ENDPROC
+
+  PROC test_predefined_data_by_reference()
+    use_tool tool0;
+    use_tool tool0 \w:=wobj0;
+    Assert tool0.tload.mass = 0.001;
+  ENDPROC
+
   FUNC num bad_opt(\num b)
     RETURN b;
   ENDFUNC

@@ -20,6 +20,7 @@ MODULE sema_errors2
     change 1 + 2;
     keep p;
     keep ppos.x;
+    keep tool0.tframe.trans;
     p.w := 1;
     arr{1} := 2;
     p := [1, 2];
