@@ -160,7 +160,7 @@ impl<'t> Builder<'t, '_> {
     }
 
     /// Parse and build the file piece by piece: outside a module, one `entry_top` at a time
-    /// (header, module head, or junk); inside, one `entry_module` (an item or the end).
+    /// (header, module head, or junk); inside, one `entry_module` (up to 16 items, or the end).
     fn file_pieces(&mut self, out: &mut ast::File) {
         let mut pos = 0;
         let mut module: Option<ModuleUnderConstruction<'t>> = None;
