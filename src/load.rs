@@ -130,7 +130,15 @@ mod tests {
     fn walks_directories_sorted_and_filtered() {
         let root = std::env::temp_dir().join(format!("rapidvc-load-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&root);
-        for f in ["b/z.MOD", "b/a.sys", "a.prg", "x.modx", "notes.txt", ".hidden/h.mod", "c/empty/"] {
+        for f in [
+            "b/z.MOD",
+            "b/a.sys",
+            "a.prg",
+            "x.modx",
+            "notes.txt",
+            ".hidden/h.mod",
+            "c/empty/",
+        ] {
             let path = root.join(f);
             if f.ends_with('/') {
                 std::fs::create_dir_all(&path).unwrap();
@@ -142,7 +150,12 @@ mod tests {
         let found = find_rapid_files(std::slice::from_ref(&root)).unwrap();
         let rel: Vec<String> = found
             .iter()
-            .map(|p| p.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/"))
+            .map(|p| {
+                p.strip_prefix(&root)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/")
+            })
             .collect();
         assert_eq!(rel, ["a.prg", "b/a.sys", "b/z.MOD", "x.modx"]);
         // A file named explicitly is taken whatever its extension; duplicates are dropped.
@@ -162,7 +175,10 @@ mod tests {
         std::fs::write(&latin, b"! caf\xe9\r\nMODULE m\r\nENDMODULE\r\n").unwrap();
         let mut map = SourceMap::new();
         let id = load_file(&mut map, &latin).unwrap();
-        assert_eq!(&*map.get(id).text, "! caf\u{e9}\r\nMODULE m\r\nENDMODULE\r\n");
+        assert_eq!(
+            &*map.get(id).text,
+            "! caf\u{e9}\r\nMODULE m\r\nENDMODULE\r\n"
+        );
         std::fs::remove_dir_all(&root).unwrap();
     }
 
