@@ -90,31 +90,32 @@ impl<'t> Builder<'t, '_> {
     /// Report an error (up to [`MAX_ERRORS_PER_FILE`] per file).
     pub(crate) fn error(&mut self, kind: ParseErrorKind) {
         if self.errors >= MAX_ERRORS_PER_FILE {
-            if !self.stopped {
-                self.stopped = true;
-                let span = ParseError::new(self.file, kind).span();
-                self.diags.push(ParseError::new(
-                    self.file,
-                    ParseErrorKind::TooManyErrors {
-                        span,
-                        count: self.errors,
-                    },
-                ));
-            }
+            self.too_many_errors(ParseError::new(self.file, kind).span());
             return;
         }
         self.errors += 1;
         self.diags.push(ParseError::new(self.file, kind));
     }
 
+    /// Note once that errors from `span` on are not reported.
+    fn too_many_errors(&mut self, span: Span) {
+        if !self.stopped {
+            self.stopped = true;
+            self.diags.push(ParseError::new(
+                self.file,
+                ParseErrorKind::TooManyErrors {
+                    span,
+                    count: self.errors,
+                },
+            ));
+        }
+    }
+
     /// Report a region the fast parser skipped.
     pub(crate) fn skipped(&mut self, p: &Pair<'_>, region: Region) {
         if self.errors >= MAX_ERRORS_PER_FILE {
-            // Do not re-parse what will not be reported.
-            self.error(ParseErrorKind::Limit {
-                span: self.span(p),
-                reason: String::new(),
-            });
+            // Do not re-parse what will not be reported; note the cut once.
+            self.too_many_errors(self.span(p));
             return;
         }
         let kind = recover::diagnose(self.file, self.text, self.start(p), self.end(p), region);
