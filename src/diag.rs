@@ -243,9 +243,8 @@ fn diagnostic_json(d: &dyn RapidDiagnostic, sources: &SourceMap) -> String {
     let help = d.help().map(|h| h.to_string());
     let file = d.source_id().map(|id| sources.get(id));
     let labels: Vec<miette::LabeledSpan> = d.labels().map(|l| l.collect()).unwrap_or_default();
-    let pos = |off: usize| -> (usize, usize) {
-        file.map(|f| f.line_col(off as u32)).unwrap_or((0, 0))
-    };
+    let pos =
+        |off: usize| -> (usize, usize) { file.map(|f| f.line_col(off as u32)).unwrap_or((0, 0)) };
     let mut o = format!(
         "{{\"severity\":\"{sev}\",\"code\":{},\"message\":{}",
         json_str(&code),

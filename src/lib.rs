@@ -15,4 +15,5 @@ pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod diag;
+pub mod motion;
 pub mod source;
