@@ -1,173 +1,207 @@
 //! Trapezoidal velocity profiles of a normalised path parameter `s ∈ [0, 1]` (robot.md §9:
-//! equal acceleration and deceleration, triangular when the move is short).
+//! trapezoidal, triangular when the move is short).
 //!
 //! Every move is a geometric path `s ↦ pose/joints` plus one of these time laws, so all axes of
-//! a joint move arrive together and a linear move keeps its shape while speeding up.
+//! a joint move arrive together and a linear move keeps its shape while speeding up. The ramps
+//! may be stretched to cover a minimum share of the path: a fly-by point decelerates over its
+//! whole zone, so that the corner path (the superposition of this ramp-down and the next move's
+//! ramp-up) fills the zone at speed instead of stopping.
 
-/// A trapezoidal time law `t ↦ s(t)` from rest at `s = 0` to rest at `s = 1`.
-///
-/// Accelerates at `acc` for `t_acc`, cruises at `v_peak`, decelerates at `acc` for `t_acc`.
-/// All quantities are normalised: `v_peak` is in path fractions per second.
+/// Limits of one profile, all in normalised units (path fractions per second, per second²).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Trapezoid {
-    duration: f64,
-    t_acc: f64,
-    v_peak: f64,
-    acc: f64,
+pub struct ProfileLimits {
+    /// Maximum path speed `ṡ` (infinite: unbounded).
+    pub v_max: f64,
+    /// Maximum path acceleration `|s̈|` (infinite: unbounded).
+    pub a_max: f64,
+    /// The ramp-up covers at least this share of the path (0…0.5).
+    pub ramp_in: f64,
+    /// The ramp-down covers at least this share of the path (0…0.5).
+    pub ramp_out: f64,
 }
 
-impl Trapezoid {
+impl ProfileLimits {
+    /// Speed and acceleration limits with the shortest possible ramps.
+    pub fn new(v_max: f64, a_max: f64) -> ProfileLimits {
+        ProfileLimits {
+            v_max,
+            a_max,
+            ramp_in: 0.0,
+            ramp_out: 0.0,
+        }
+    }
+}
+
+/// A time law `t ↦ s(t)` from rest at `s = 0` to rest at `s = 1`: constant acceleration for
+/// `t_up`, cruise at `v_peak`, constant deceleration for `t_down`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Profile {
+    v_peak: f64,
+    /// Path share covered while accelerating / decelerating.
+    d_up: f64,
+    d_down: f64,
+    t_up: f64,
+    t_cruise: f64,
+    t_down: f64,
+}
+
+impl Profile {
     /// A profile that takes no time (a move that goes nowhere).
-    pub const INSTANT: Trapezoid = Trapezoid {
-        duration: 0.0,
-        t_acc: 0.0,
+    pub const INSTANT: Profile = Profile {
         v_peak: 0.0,
-        acc: 0.0,
+        d_up: 0.0,
+        d_down: 0.0,
+        t_up: 0.0,
+        t_cruise: 0.0,
+        t_down: 0.0,
     };
 
-    /// The time-optimal profile for the unit distance under `ṡ ≤ v_max` and `|s̈| ≤ a_max`.
-    ///
-    /// Limits that are infinite, NaN or not positive are treated as "no limit" when infinite
-    /// and as "cannot move" (an infinite duration is avoided: the result is [`Self::INSTANT`])
-    /// only when both are unbounded.
-    pub fn fastest(v_max: f64, a_max: f64) -> Trapezoid {
-        let v = sane_limit(v_max);
-        let a = sane_limit(a_max);
-        match (v, a) {
-            (None, None) => Trapezoid::INSTANT,
-            // No acceleration limit: constant velocity.
-            (Some(v), None) => Trapezoid {
-                duration: 1.0 / v,
-                t_acc: 0.0,
-                v_peak: v,
-                acc: 0.0,
-            },
-            // No velocity limit: triangle.
-            (None, Some(a)) => Trapezoid::triangle(a),
-            (Some(v), Some(a)) => {
-                if v * v / a >= 1.0 {
-                    Trapezoid::triangle(a)
-                } else {
-                    let t_acc = v / a;
-                    Trapezoid {
-                        duration: 1.0 / v + t_acc,
-                        t_acc,
-                        v_peak: v,
-                        acc: a,
-                    }
-                }
+    /// The fastest profile within `limits`. Limits that are not finite and positive count as
+    /// unbounded; with both speed and acceleration unbounded the result is [`Self::INSTANT`].
+    pub fn fastest(limits: &ProfileLimits) -> Profile {
+        match top_speed(limits) {
+            Some(v) => Profile::at_speed(v, limits),
+            None => Profile::INSTANT,
+        }
+    }
+
+    /// A profile lasting `duration` seconds (or the fastest one, if that is slower): the
+    /// highest ramp acceleration allowed and the slowest cruise that fits.
+    pub fn with_duration(duration: f64, limits: &ProfileLimits) -> Profile {
+        let fastest = Profile::fastest(limits);
+        if !(duration.is_finite() && duration > fastest.duration()) {
+            return fastest;
+        }
+        let v_top = if fastest.v_peak > 0.0 {
+            fastest.v_peak
+        } else {
+            // Unbounded limits: any speed is allowed.
+            f64::MAX
+        };
+        // duration(v) = (1 + d_up(v) + d_down(v)) / v is strictly decreasing on (0, v_top], so
+        // bisect for v. 200 halvings reach the f64 resolution from any start.
+        let (mut lo, mut hi) = (0.0_f64, v_top.min(3.0 / duration));
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if Profile::at_speed(mid, limits).duration() > duration {
+                lo = mid;
+            } else {
+                hi = mid;
             }
         }
+        Profile::at_speed(hi, limits)
     }
 
-    fn triangle(a: f64) -> Trapezoid {
-        let t_acc = (1.0 / a).sqrt();
-        Trapezoid {
-            duration: 2.0 * t_acc,
-            t_acc,
-            v_peak: a * t_acc,
-            acc: a,
+    /// The profile cruising at `v` (which must not exceed the top speed of `limits`).
+    fn at_speed(v: f64, limits: &ProfileLimits) -> Profile {
+        if !(v.is_finite() && v > 0.0) {
+            return Profile::INSTANT;
         }
-    }
-
-    /// A profile lasting `duration` seconds that accelerates at `a_max` and then cruises
-    /// (the slowest cruise that still fits). A `duration` shorter than the fastest triangle for
-    /// `a_max` gives that triangle (the move never violates the acceleration limit).
-    pub fn with_duration(duration: f64, a_max: f64) -> Trapezoid {
-        if !(duration.is_finite() && duration > 0.0) {
-            return Trapezoid::INSTANT;
-        }
-        let Some(a) = sane_limit(a_max) else {
-            return Trapezoid {
-                duration,
-                t_acc: 0.0,
-                v_peak: 1.0 / duration,
-                acc: 0.0,
-            };
+        let natural = match bounded(limits.a_max) {
+            Some(a) => v * v / (2.0 * a),
+            None => 0.0,
         };
-        let disc = duration * duration - 4.0 / a;
-        if disc <= 0.0 {
-            return Trapezoid::triangle(a);
-        }
-        let t_acc = (duration - disc.sqrt()) / 2.0;
-        let v_peak = 1.0 / (duration - t_acc);
-        Trapezoid {
-            duration,
-            t_acc,
-            v_peak,
-            acc: if t_acc > 0.0 { v_peak / t_acc } else { 0.0 },
+        let d_up = natural.max(clamp_share(limits.ramp_in));
+        let d_down = natural.max(clamp_share(limits.ramp_out));
+        let cruise = (1.0 - d_up - d_down).max(0.0);
+        Profile {
+            v_peak: v,
+            d_up,
+            d_down,
+            t_up: 2.0 * d_up / v,
+            t_cruise: cruise / v,
+            t_down: 2.0 * d_down / v,
         }
     }
 
     /// Total duration in seconds.
     pub fn duration(&self) -> f64 {
-        self.duration
+        self.t_up + self.t_cruise + self.t_down
     }
 
-    /// Duration of the acceleration ramp (and of the deceleration ramp) in seconds.
-    pub fn ramp_time(&self) -> f64 {
-        self.t_acc
+    /// Duration of the ramp-up in seconds.
+    pub fn ramp_up_time(&self) -> f64 {
+        self.t_up
     }
 
-    /// Peak path speed (fractions of the path per second).
+    /// Duration of the ramp-down in seconds.
+    pub fn ramp_down_time(&self) -> f64 {
+        self.t_down
+    }
+
+    /// Peak (cruise) path speed in path fractions per second.
     pub fn peak_speed(&self) -> f64 {
         self.v_peak
     }
 
-    /// Path acceleration (fractions of the path per second²).
-    pub fn acceleration(&self) -> f64 {
-        self.acc
-    }
-
-    /// `s(t)`, clamped to `[0, 1]` outside `[0, duration]`.
+    /// `s(t)`, clamped to `[0, 1]`; a zero-length profile is at 1 for every `t > 0`.
     pub fn position(&self, t: f64) -> f64 {
-        if t <= 0.0 || self.duration <= 0.0 {
-            return if self.duration <= 0.0 || t > 0.0 {
-                1.0
-            } else {
-                0.0
-            };
+        let total = self.duration();
+        if total <= 0.0 {
+            return if t > 0.0 { 1.0 } else { 0.0 };
         }
-        if t >= self.duration {
+        if t <= 0.0 {
+            return 0.0;
+        }
+        if t >= total {
             return 1.0;
         }
-        let s = if t < self.t_acc {
-            0.5 * self.acc * t * t
-        } else if t <= self.duration - self.t_acc {
-            0.5 * self.acc * self.t_acc * self.t_acc + self.v_peak * (t - self.t_acc)
+        let s = if t < self.t_up {
+            0.5 * self.v_peak / self.t_up * t * t
+        } else if t <= self.t_up + self.t_cruise {
+            self.d_up + self.v_peak * (t - self.t_up)
         } else {
-            let r = self.duration - t;
-            1.0 - 0.5 * self.acc * r * r
+            let r = total - t;
+            1.0 - 0.5 * self.v_peak / self.t_down * r * r
         };
         s.clamp(0.0, 1.0)
     }
 
-    /// `ṡ(t)` (zero outside `[0, duration]`).
+    /// `ṡ(t)` (zero outside the profile).
     pub fn velocity(&self, t: f64) -> f64 {
-        if t <= 0.0 || t >= self.duration {
+        let total = self.duration();
+        if t <= 0.0 || t >= total {
             0.0
-        } else if t < self.t_acc {
-            self.acc * t
-        } else if t <= self.duration - self.t_acc {
+        } else if t < self.t_up {
+            self.v_peak * t / self.t_up
+        } else if t <= self.t_up + self.t_cruise {
             self.v_peak
         } else {
-            self.acc * (self.duration - t)
+            self.v_peak * (total - t) / self.t_down
         }
     }
 }
 
-/// A usable limit: finite and positive; `None` for "unbounded" (infinite). NaN and
-/// non-positive values count as unbounded too, so callers must validate their inputs first.
-fn sane_limit(x: f64) -> Option<f64> {
+/// The highest cruise speed the limits allow (the ramps never overlap because each covers at
+/// most half the path): `min(v_max, √a_max)`. `None` when both are unbounded.
+fn top_speed(limits: &ProfileLimits) -> Option<f64> {
+    match (bounded(limits.v_max), bounded(limits.a_max)) {
+        (None, None) => None,
+        (Some(v), None) => Some(v),
+        (None, Some(a)) => Some(a.sqrt()),
+        (Some(v), Some(a)) => Some(v.min(a.sqrt())),
+    }
+}
+
+/// A usable limit: finite and positive; `None` means unbounded. Callers validate user data
+/// (NaN, negative speeds) before building limits.
+fn bounded(x: f64) -> Option<f64> {
     (x.is_finite() && x > 0.0).then_some(x)
+}
+
+fn clamp_share(x: f64) -> f64 {
+    if x.is_finite() { x.clamp(0.0, 0.5) } else { 0.0 }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn check_shape(p: &Trapezoid) {
-        let n = 2000;
+    fn check_shape(p: &Profile) {
+        let n = 4000;
         let mut prev = 0.0;
         for i in 0..=n {
             let t = p.duration() * f64::from(i) / f64::from(n);
@@ -177,17 +211,16 @@ mod tests {
             prev = s;
         }
         assert!((p.position(p.duration()) - 1.0).abs() < 1e-12);
-        // Continuity at the ramp ends.
         let e = 1e-9;
-        for t in [p.ramp_time(), p.duration() - p.ramp_time()] {
+        for t in [p.ramp_up_time(), p.duration() - p.ramp_down_time()] {
             assert!((p.position(t - e) - p.position(t + e)).abs() < 1e-6);
         }
     }
 
     #[test]
     fn fastest_reaches_cruise() {
-        let p = Trapezoid::fastest(2.0, 20.0);
-        assert!((p.ramp_time() - 0.1).abs() < 1e-12);
+        let p = Profile::fastest(&ProfileLimits::new(2.0, 20.0));
+        assert!((p.ramp_up_time() - 0.1).abs() < 1e-12);
         assert!((p.duration() - 0.6).abs() < 1e-12);
         assert!((p.velocity(0.3) - 2.0).abs() < 1e-12);
         check_shape(&p);
@@ -195,37 +228,55 @@ mod tests {
 
     #[test]
     fn fastest_triangle() {
-        let p = Trapezoid::fastest(100.0, 4.0);
+        let p = Profile::fastest(&ProfileLimits::new(100.0, 4.0));
         assert!((p.duration() - 1.0).abs() < 1e-12);
         assert!((p.position(0.5) - 0.5).abs() < 1e-12);
         check_shape(&p);
     }
 
     #[test]
-    fn stretched_keeps_acceleration() {
-        let fast = Trapezoid::fastest(2.0, 20.0);
-        let slow = Trapezoid::with_duration(2.0, 20.0);
-        assert!((slow.acceleration() - 20.0).abs() < 1e-9);
-        assert!(slow.peak_speed() < fast.peak_speed());
+    fn stretched_ramps_cover_the_zone() {
+        let limits = ProfileLimits {
+            v_max: 2.0,
+            a_max: 20.0,
+            ramp_in: 0.0,
+            ramp_out: 0.3,
+        };
+        let p = Profile::fastest(&limits);
+        // The ramp-down covers 30 % of the path at the same peak speed.
+        assert!((p.peak_speed() - 2.0).abs() < 1e-12);
+        assert!((p.ramp_down_time() - 0.3).abs() < 1e-12);
+        assert!((p.position(p.duration() - p.ramp_down_time()) - 0.7).abs() < 1e-12);
+        check_shape(&p);
+    }
+
+    #[test]
+    fn with_duration_slows_down() {
+        let limits = ProfileLimits::new(2.0, 20.0);
+        let slow = Profile::with_duration(2.0, &limits);
+        assert!((slow.duration() - 2.0).abs() < 1e-9);
+        assert!(slow.peak_speed() < 2.0);
         check_shape(&slow);
-        // Too short: falls back to the fastest triangle.
-        let t = Trapezoid::with_duration(0.1, 4.0);
-        assert!((t.duration() - 1.0).abs() < 1e-12);
+        // Shorter than possible: the fastest profile.
+        let fast = Profile::with_duration(0.1, &limits);
+        assert_eq!(fast, Profile::fastest(&limits));
         // No acceleration limit: constant speed.
-        let c = Trapezoid::with_duration(4.0, f64::INFINITY);
-        assert!((c.position(1.0) - 0.25).abs() < 1e-12);
+        let c = Profile::with_duration(4.0, &ProfileLimits::new(f64::INFINITY, f64::INFINITY));
+        assert!((c.position(1.0) - 0.25).abs() < 1e-9);
     }
 
     #[test]
     fn degenerate_inputs() {
-        assert_eq!(
-            Trapezoid::fastest(f64::INFINITY, f64::INFINITY),
-            Trapezoid::INSTANT
-        );
-        assert_eq!(Trapezoid::with_duration(f64::NAN, 1.0), Trapezoid::INSTANT);
-        assert_eq!(Trapezoid::INSTANT.position(0.0), 1.0);
-        assert_eq!(Trapezoid::INSTANT.position(1.0), 1.0);
-        let c = Trapezoid::fastest(0.5, f64::INFINITY);
+        let none = ProfileLimits::new(f64::INFINITY, f64::INFINITY);
+        assert_eq!(Profile::fastest(&none), Profile::INSTANT);
+        assert_eq!(Profile::INSTANT.position(0.0), 0.0);
+        assert_eq!(Profile::INSTANT.position(0.004), 1.0);
+        let c = Profile::fastest(&ProfileLimits::new(0.5, f64::INFINITY));
         assert!((c.duration() - 2.0).abs() < 1e-12);
+        let nan = ProfileLimits {
+            ramp_in: f64::NAN,
+            ..ProfileLimits::new(1.0, 1.0)
+        };
+        check_shape(&Profile::fastest(&nan));
     }
 }
