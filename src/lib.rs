@@ -16,4 +16,5 @@ pub mod ast;
 pub mod cli;
 pub mod diag;
 pub mod motion;
+pub mod robot;
 pub mod source;
