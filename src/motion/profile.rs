@@ -193,10 +193,15 @@ fn bounded(x: f64) -> Option<f64> {
 }
 
 fn clamp_share(x: f64) -> f64 {
-    if x.is_finite() { x.clamp(0.0, 0.5) } else { 0.0 }
+    if x.is_finite() {
+        x.clamp(0.0, 0.5)
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 mod tests {
     use super::*;
 

@@ -1,0 +1,775 @@
+//! Clock-driven tests of the motion core on the default robot (IRB 2600-12/1.85): acceptance
+//! facts of robot.md §11, path accuracy of MoveL/MoveC, axis-speed limits, zones, errors before
+//! motion, and byte-identical virtual-time traces. No sleeping: time is advanced by hand.
+
+mod support {
+    use std::time::Duration;
+
+    use rapidvc::motion::{CoreConfig, MotionCore, RobotTime, Setpoint};
+    use rapidvc::robot::command::{
+        EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, MoveC, MoveJ, MoveL, RobTarget,
+        SpeedData, SpeedOverride, ZoneData,
+    };
+    use rapidvc::robot::{
+        ConfData, JointsDeg, Pose, Robot, ToolData, WobjData, pose_from_pos_quat,
+    };
+
+    pub const DT: Duration = Duration::from_millis(4);
+
+    pub fn core_at(q: JointsDeg) -> MotionCore {
+        MotionCore::new(Robot::default(), CoreConfig::default(), q)
+    }
+
+    pub fn t_fronius() -> ToolData {
+        ToolData {
+            tframe: pose_from_pos_quat(
+                [12.3313, -0.108707, 416.142],
+                [0.903899, -0.00320735, 0.427666, 0.00765917],
+            ),
+            ..ToolData::tool0()
+        }
+    }
+
+    pub fn p20() -> RobTarget {
+        RobTarget {
+            trans: [150.0, 1320.0, 1140.0],
+            rot: [0.000494947, 0.662278, -0.749217, -0.00783173],
+            robconf: ConfData::new(0, 0, -1, 0),
+            extax: EXTAX_NONE,
+        }
+    }
+
+    pub fn p30() -> RobTarget {
+        RobTarget {
+            trans: [114.50, 1005.42, 1410.38],
+            rot: [0.322151, -0.601023, 0.672381, 0.287914],
+            robconf: ConfData::new(0, 0, -1, 0),
+            extax: EXTAX_NONE,
+        }
+    }
+
+    pub fn target(trans: [f64; 3], rot: [f64; 4]) -> RobTarget {
+        RobTarget {
+            trans,
+            rot,
+            robconf: ConfData::new(0, 0, 0, 0),
+            extax: EXTAX_NONE,
+        }
+    }
+
+    pub fn zone(z: f64) -> ZoneData {
+        if z <= 0.0 {
+            ZoneData::FINE
+        } else {
+            ZoneData {
+                finep: false,
+                pzone_tcp: z,
+                pzone_ori: 1.5 * z,
+                pzone_eax: 1.5 * z,
+                zone_ori: 0.15 * z,
+                zone_leax: 1.5 * z,
+                zone_reax: 0.15 * z,
+            }
+        }
+    }
+
+    pub fn args(id: u64, v: f64, z: f64, tool: ToolData) -> MoveArgs {
+        MoveArgs {
+            id,
+            source: None,
+            speed: SpeedData::v(v),
+            speed_override: None,
+            zone: zone(z),
+            tool,
+            wobj: WobjData::wobj0(),
+            tload: None,
+            pdisp: Pose::identity(),
+        }
+    }
+
+    pub fn abs_j(id: u64, q: JointsDeg, v: f64, z: f64) -> MotionCommand {
+        MotionCommand::MoveAbsJ(MoveAbsJ {
+            args: args(id, v, z, ToolData::tool0()),
+            target: JointTarget {
+                robax: q,
+                extax: EXTAX_NONE,
+            },
+            no_eoffs: false,
+        })
+    }
+
+    pub fn move_j(id: u64, t: RobTarget, v: f64, z: f64, tool: ToolData) -> MotionCommand {
+        MotionCommand::MoveJ(MoveJ {
+            args: args(id, v, z, tool),
+            target: t,
+            conf_check: true,
+        })
+    }
+
+    pub fn move_l(id: u64, t: RobTarget, v: f64, z: f64, tool: ToolData) -> MotionCommand {
+        MotionCommand::MoveL(MoveL {
+            args: args(id, v, z, tool),
+            target: t,
+            conf_check: false,
+        })
+    }
+
+    pub fn move_c(
+        id: u64,
+        cir: RobTarget,
+        to: RobTarget,
+        v: f64,
+        z: f64,
+        tool: ToolData,
+    ) -> MotionCommand {
+        MotionCommand::MoveC(MoveC {
+            args: args(id, v, z, tool),
+            cir_point: cir,
+            to_point: to,
+            conf_check: false,
+        })
+    }
+
+    pub fn with_time(mut cmd: MotionCommand, t: f64) -> MotionCommand {
+        match &mut cmd {
+            MotionCommand::MoveAbsJ(m) => m.args.speed_override = Some(SpeedOverride::T(t)),
+            MotionCommand::MoveJ(m) => m.args.speed_override = Some(SpeedOverride::T(t)),
+            MotionCommand::MoveL(m) => m.args.speed_override = Some(SpeedOverride::T(t)),
+            MotionCommand::MoveC(m) => m.args.speed_override = Some(SpeedOverride::T(t)),
+        }
+        cmd
+    }
+
+    /// Tick the core until every queued move is done; returns every setpoint (bounded).
+    pub fn run(core: &mut MotionCore, start_tick: &mut u64) -> Vec<Setpoint> {
+        let mut out = Vec::new();
+        for _ in 0..1_000_000 {
+            *start_tick += 1;
+            let now = RobotTime::from_nanos(*start_tick * DT.as_nanos() as u64);
+            let sp = core.tick(now);
+            out.push(sp);
+            if core.state().in_position() {
+                return out;
+            }
+        }
+        panic!("the motion did not end");
+    }
+
+    /// Enqueue all (ticking while the queue is full), then run to the end.
+    pub fn run_all(core: &mut MotionCore, cmds: Vec<MotionCommand>) -> Vec<Setpoint> {
+        let mut tick = 0;
+        let mut out = Vec::new();
+        for cmd in cmds {
+            let mut cmd = cmd;
+            loop {
+                match core.enqueue(cmd) {
+                    Ok(()) => break,
+                    Err(rapidvc::motion::EnqueueError::QueueFull(c)) => {
+                        cmd = *c;
+                        tick += 1;
+                        out.push(core.tick(RobotTime::from_nanos(tick * DT.as_nanos() as u64)));
+                    }
+                    Err(e) => panic!("rejected: {e}"),
+                }
+            }
+        }
+        out.extend(run(core, &mut tick));
+        out
+    }
+
+    pub fn assert_joints(q: &JointsDeg, want: &JointsDeg, tol: f64) {
+        for (i, (a, b)) in q.iter().zip(want).enumerate() {
+            assert!(
+                (a - b).abs() <= tol,
+                "axis {}: {a} vs {b} (all {q:?})",
+                i + 1
+            );
+        }
+    }
+}
+
+use support::*;
+
+mod acceptance {
+    use super::*;
+    use rapidvc::robot::ToolData;
+
+    const EXPECTED: [f64; 6] = [83.50, 0.08, -0.34, 0.10, 39.07, -0.14];
+
+    #[test]
+    fn move_j_p20_with_fronius_from_the_second_start_pose() {
+        let mut core = core_at([0.0; 6]);
+        let sps = run_all(
+            &mut core,
+            vec![
+                abs_j(1, [0.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0),
+                move_j(2, p20(), 1000.0, 0.0, t_fronius()),
+            ],
+        );
+        let last = sps.last().unwrap();
+        assert_joints(
+            &last.joints,
+            &[83.498, 0.077, -0.340, 0.103, 39.066, -0.136],
+            0.01,
+        );
+        assert_joints(&last.joints, &EXPECTED, 0.006);
+        assert!(last.standstill);
+        // The TCP of tFroniusCMT is at p20.
+        let t = last.tcp.translation.vector;
+        assert!(
+            (t - nalgebra::Vector3::new(150.0, 1320.0, 1140.0)).norm() < 0.1,
+            "{t:?}"
+        );
+    }
+
+    #[test]
+    fn move_j_p30_with_tool0_reaches_the_same_joints() {
+        let mut core = core_at([0.0, 0.0, 0.0, 0.0, 35.0, 0.0]);
+        let sps = run_all(
+            &mut core,
+            vec![move_j(1, p30(), 1000.0, 0.0, ToolData::tool0())],
+        );
+        assert_joints(
+            &sps.last().unwrap().joints,
+            &[83.498, 0.077, -0.340, 0.103, 39.066, -0.136],
+            0.01,
+        );
+    }
+}
+
+/// Helpers for geometric checks.
+mod geo {
+    use nalgebra::Vector3;
+    use rapidvc::motion::Setpoint;
+    use rapidvc::robot::{JointsDeg, Robot};
+
+    pub fn pos(sp: &Setpoint) -> Vector3<f64> {
+        sp.tcp.translation.vector
+    }
+
+    /// Distance of `p` from the segment a–b.
+    pub fn dist_to_segment(p: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+        let ab = b - a;
+        let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+        (a + ab * t - p).norm()
+    }
+
+    /// Every step of every setpoint keeps every axis within its maximum speed.
+    pub fn assert_axis_speeds(start: &JointsDeg, sps: &[Setpoint]) {
+        let robot = Robot::default();
+        let vmax = robot.model().max_speed;
+        let dt = super::DT.as_secs_f64();
+        let mut prev = *start;
+        for sp in sps {
+            for i in 0..6 {
+                let v = (sp.joints[i] - prev[i]).abs() / dt;
+                assert!(
+                    v <= vmax[i] * (1.0 + 1e-9),
+                    "axis {} at {:.1}°/s > {} at t={}",
+                    i + 1,
+                    v,
+                    vmax[i],
+                    sp.time
+                );
+            }
+            prev = sp.joints;
+        }
+    }
+}
+
+mod paths {
+    use super::geo::*;
+    use super::*;
+    use nalgebra::Vector3;
+    use rapidvc::robot::{Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    fn start_target() -> ([f64; 3], [f64; 4]) {
+        pose_to_pos_quat(&Robot::default().fk(&START))
+    }
+
+    #[test]
+    fn move_l_is_straight_and_reaches_its_speed() {
+        let (p0, rot) = start_target();
+        let p1 = [p0[0] - 300.0, p0[1] + 400.0, p0[2] - 200.0];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![move_l(1, target(p1, rot), 500.0, 0.0, ToolData::tool0())],
+        );
+        let a = Vector3::from(p0);
+        let b = Vector3::from(p1);
+        let mut top: f64 = 0.0;
+        let mut cruise = 0;
+        for sp in &sps {
+            let d = dist_to_segment(&pos(sp), &a, &b);
+            assert!(d <= 0.1, "{d} mm off the line at {}", sp.time);
+            assert!(sp.speed <= 500.0 * (1.0 + 1e-9), "{} mm/s", sp.speed);
+            top = top.max(sp.speed);
+            if (sp.speed - 500.0).abs() < 0.5 {
+                cruise += 1;
+            }
+            // Orientation is kept.
+            let q = Robot::default().fk(&START).rotation;
+            assert!(sp.tcp.rotation.angle_to(&q) < 1e-6);
+        }
+        assert!((top - 500.0).abs() < 0.5, "top speed {top}");
+        assert!(cruise > 100, "only {cruise} cycles at the programmed speed");
+        assert!((pos(sps.last().unwrap()) - b).norm() < 1e-6);
+        assert_axis_speeds(&START, &sps);
+    }
+
+    #[test]
+    fn move_l_with_reorientation_interpolates_orientation() {
+        let (p0, _) = start_target();
+        let q0 = Robot::default().fk(&START).rotation;
+        let turn = nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.6);
+        let q1 = turn * q0;
+        let p1 = [p0[0], p0[1] + 100.0, p0[2]];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![move_l(
+                1,
+                target(p1, [q1.w, q1.i, q1.j, q1.k]),
+                1000.0,
+                0.0,
+                ToolData::tool0(),
+            )],
+        );
+        // v_ori (500°/s) allows 34° in ~0.07 s, v_tcp 100 mm in 0.1 s: the line dominates.
+        let last = sps.last().unwrap();
+        assert!(last.tcp.rotation.angle_to(&q1) < 1e-6);
+        for sp in &sps {
+            let s = (pos(sp).y - p0[1]) / 100.0;
+            let expected = q0.slerp(&q1, s.clamp(0.0, 1.0));
+            assert!(
+                sp.tcp.rotation.angle_to(&expected) < 1e-6,
+                "orientation off the SLERP at s={s}"
+            );
+        }
+        assert_axis_speeds(&START, &sps);
+    }
+
+    #[test]
+    fn move_c_stays_on_the_circle() {
+        let (p0, rot) = start_target();
+        let c = Vector3::new(p0[0], p0[1], p0[2] - 200.0);
+        let cir = [c.x, c.y + 200.0, c.z];
+        let to = [c.x, c.y, c.z - 200.0];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![move_c(
+                1,
+                target(cir, rot),
+                target(to, rot),
+                300.0,
+                0.0,
+                ToolData::tool0(),
+            )],
+        );
+        let mut passed_cir = false;
+        for sp in &sps {
+            let p = pos(sp);
+            assert!(
+                ((p - c).norm() - 200.0).abs() <= 0.1,
+                "off the circle: r = {}",
+                (p - c).norm()
+            );
+            assert!((p.x - c.x).abs() <= 0.1, "off the plane");
+            assert!(sp.speed <= 300.0 * (1.0 + 1e-6));
+            passed_cir |= (p - Vector3::from(cir)).norm() < 2.0;
+        }
+        assert!(passed_cir, "the arc does not pass the circle point");
+        assert!((pos(sps.last().unwrap()) - Vector3::from(to)).norm() < 1e-6);
+        // Constant speed in the middle of the arc.
+        let mid = &sps[sps.len() / 2];
+        assert!((mid.speed - 300.0).abs() < 0.5, "{}", mid.speed);
+        assert_axis_speeds(&START, &sps);
+    }
+
+    #[test]
+    fn fine_points_stop_between_moves() {
+        let (p0, rot) = start_target();
+        let p1 = [p0[0], p0[1] + 200.0, p0[2]];
+        let p2 = [p0[0], p0[1] + 200.0, p0[2] - 200.0];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![
+                move_l(1, target(p1, rot), 1000.0, 0.0, ToolData::tool0()),
+                move_l(2, target(p2, rot), 1000.0, 0.0, ToolData::tool0()),
+            ],
+        );
+        let at_p1 = sps
+            .iter()
+            .position(|sp| (pos(sp) - Vector3::from(p1)).norm() < 1e-6)
+            .expect("reaches p1");
+        assert!(
+            sps[at_p1].standstill,
+            "standstill reported at the fine point"
+        );
+        // The path has a sharp corner at p1: every point is on one of the two lines.
+        for sp in &sps {
+            let d = dist_to_segment(&pos(sp), &Vector3::from(p0), &Vector3::from(p1)).min(
+                dist_to_segment(&pos(sp), &Vector3::from(p1), &Vector3::from(p2)),
+            );
+            assert!(d <= 0.1);
+        }
+    }
+
+    #[test]
+    fn fly_by_corners_stay_inside_their_zones() {
+        let (p0, rot) = start_target();
+        let z = 50.0;
+        let pts = [
+            p0,
+            [p0[0], p0[1] + 300.0, p0[2]],
+            [p0[0] - 200.0, p0[1] + 300.0, p0[2] - 200.0],
+            [p0[0] - 200.0, p0[1] + 30.0, p0[2] - 200.0],
+        ];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![
+                move_l(1, target(pts[1], rot), 800.0, z, ToolData::tool0()),
+                move_l(2, target(pts[2], rot), 800.0, z, ToolData::tool0()),
+                move_l(3, target(pts[3], rot), 800.0, 0.0, ToolData::tool0()),
+            ],
+        );
+        let v = |i: usize| Vector3::from(pts[i]);
+        let mut in_corner = [0usize; 2];
+        let mut min_speed_in_corner = [f64::INFINITY; 2];
+        for sp in &sps {
+            let p = pos(sp);
+            let on_line = (0..3).any(|i| dist_to_segment(&p, &v(i), &v(i + 1)) <= 1e-3);
+            if !on_line {
+                // Off the programmed lines: inside the zone of a fly-by point.
+                let k = if (p - v(1)).norm() < (p - v(2)).norm() {
+                    0
+                } else {
+                    1
+                };
+                let d = (p - v(k + 1)).norm();
+                assert!(d <= z + 1e-6, "corner {} leaves its zone: {d} mm", k + 1);
+                in_corner[k] += 1;
+                min_speed_in_corner[k] = min_speed_in_corner[k].min(sp.speed);
+            }
+        }
+        assert!(
+            in_corner[0] > 5 && in_corner[1] > 5,
+            "corner paths {in_corner:?}"
+        );
+        // The robot flies by: it never stops in a corner.
+        assert!(
+            min_speed_in_corner.iter().all(|&s| s > 100.0),
+            "{min_speed_in_corner:?}"
+        );
+        // The second zone is halved by the 270 mm third leg? No: 50 < 135, kept.
+        assert!(core.take_event().is_none(), "no warnings");
+        assert_axis_speeds(&START, &sps);
+    }
+
+    #[test]
+    fn zones_shrink_to_half_the_distance_to_the_neighbour() {
+        let (p0, rot) = start_target();
+        // 40 mm second leg: the 100 mm zone shrinks to 20 mm.
+        let pts = [
+            p0,
+            [p0[0], p0[1] + 300.0, p0[2]],
+            [p0[0], p0[1] + 300.0, p0[2] - 40.0],
+        ];
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![
+                move_l(1, target(pts[1], rot), 500.0, 100.0, ToolData::tool0()),
+                move_l(2, target(pts[2], rot), 500.0, 0.0, ToolData::tool0()),
+            ],
+        );
+        let corner = Vector3::from(pts[1]);
+        let mut deviated = 0;
+        for sp in &sps {
+            let p = pos(sp);
+            let off = dist_to_segment(&p, &Vector3::from(pts[0]), &corner).min(dist_to_segment(
+                &p,
+                &corner,
+                &Vector3::from(pts[2]),
+            ));
+            if off > 1e-3 {
+                deviated += 1;
+                assert!(
+                    (p - corner).norm() <= 20.0 + 1e-6,
+                    "{}",
+                    (p - corner).norm()
+                );
+            }
+        }
+        assert!(deviated > 0);
+    }
+
+    #[test]
+    fn joint_moves_blend_in_joint_space() {
+        let mut core = core_at([0.0; 6]);
+        let sps = run_all(
+            &mut core,
+            vec![
+                abs_j(1, [30.0, 10.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 50.0),
+                abs_j(2, [30.0, 10.0, -30.0, 20.0, 60.0, 0.0], 1000.0, 0.0),
+            ],
+        );
+        assert_axis_speeds(&[0.0; 6], &sps);
+        // Axis 3 starts moving before axis 1 has stopped: a corner.
+        let overlap = sps.windows(2).any(|w| {
+            (w[1].joints[0] - w[0].joints[0]).abs() > 1e-9
+                && (w[1].joints[2] - w[0].joints[2]).abs() > 1e-9
+        });
+        assert!(overlap, "no corner between the joint moves");
+        assert_joints(
+            &sps.last().unwrap().joints,
+            &[30.0, 10.0, -30.0, 20.0, 60.0, 0.0],
+            1e-9,
+        );
+    }
+
+    #[test]
+    fn speed_and_time_arguments() {
+        let (p0, rot) = start_target();
+        let p1 = [p0[0], p0[1] + 200.0, p0[2]];
+        // \T 2 s: the move takes 2 s (500 cycles).
+        let mut core = core_at(START);
+        let sps = run_all(
+            &mut core,
+            vec![with_time(
+                move_l(1, target(p1, rot), 1000.0, 0.0, ToolData::tool0()),
+                2.0,
+            )],
+        );
+        assert_eq!(sps.len(), 500);
+        // All axes of a joint move arrive together: the limiting axis sets the duration.
+        let mut core = core_at([0.0; 6]);
+        let sps = run_all(
+            &mut core,
+            vec![abs_j(1, [90.0, 0.0, 0.0, 90.0, 0.0, 0.0], 7000.0, 0.0)],
+        );
+        let moving = |i: usize| sps.iter().filter(|sp| sp.joints[i] < 90.0 - 1e-9).count();
+        assert_eq!(moving(0), moving(3));
+        // Axis 1 (175°/s, 0.25 s ramp) limits: 90/175 + 0.25 s ≈ 0.764 s.
+        assert!(
+            (sps.len() as f64 * 0.004 - (90.0 / 175.0 + 0.25)).abs() < 0.01,
+            "{}",
+            sps.len()
+        );
+    }
+}
+
+mod errors {
+    use super::*;
+    use rapidvc::motion::{EnqueueError, MotionError, Severity};
+    use rapidvc::robot::{KinError, Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    fn rejected(
+        core: &mut rapidvc::motion::MotionCore,
+        cmd: rapidvc::robot::command::MotionCommand,
+    ) -> MotionError {
+        let before = core.state();
+        match core.enqueue(cmd) {
+            Err(EnqueueError::Rejected(e)) => {
+                // Nothing was queued and the robot has not moved.
+                let after = core.state();
+                assert_eq!(after.pending, before.pending);
+                assert_eq!(after.setpoint.joints, before.setpoint.joints);
+                let ev = core.take_event().expect("an event");
+                assert_eq!(ev.severity, Severity::Error);
+                assert_eq!(ev.error, e);
+                e
+            }
+            other => panic!("expected a rejection, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn unreachable_target_is_refused_before_motion() {
+        let (_, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let mut core = core_at(START);
+        let e = rejected(
+            &mut core,
+            move_l(
+                1,
+                target([3000.0, 0.0, 1000.0], rot),
+                500.0,
+                0.0,
+                ToolData::tool0(),
+            ),
+        );
+        assert_eq!(e.event(), Some((50050, "Position outside reach")));
+        assert_eq!(e.rapid_error_name(), Some("ERR_OUTSIDE_REACH"));
+        let e = rejected(
+            &mut core,
+            move_j(
+                2,
+                target([3000.0, 0.0, 1000.0], rot),
+                500.0,
+                0.0,
+                ToolData::tool0(),
+            ),
+        );
+        assert_eq!(e.event().map(|e| e.0), Some(50050));
+        // The core still works afterwards.
+        let sps = run_all(
+            &mut core,
+            vec![abs_j(3, [10.0, 0.0, 0.0, 0.0, 35.0, 0.0], 500.0, 0.0)],
+        );
+        assert!((sps.last().unwrap().joints[0] - 10.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn axis_limits_and_wrong_configuration() {
+        let mut core = core_at(START);
+        let e = rejected(
+            &mut core,
+            abs_j(1, [0.0, 0.0, 80.0, 0.0, 35.0, 0.0], 500.0, 0.0),
+        );
+        assert!(matches!(
+            e,
+            MotionError::Kinematics {
+                error: KinError::JointOutOfRange { joint: 3, .. },
+                ..
+            }
+        ));
+        assert_eq!(e.event().map(|e| e.0), Some(50027));
+        // p30 evaluated with the torch has no solution in conf [0,0,-1,0] (robot.md §11 pitfall).
+        let e = rejected(&mut core, move_j(2, p30(), 1000.0, 0.0, t_fronius()));
+        assert_eq!(e.rapid_error_name(), Some("ERR_ROBLIMIT"));
+    }
+
+    #[test]
+    fn linear_path_through_the_wrist_singularity_is_refused() {
+        let robot = Robot::default();
+        let from = [0.0, 0.0, 0.0, 0.0, 10.0, 0.0];
+        let (p, rot) = pose_to_pos_quat(&robot.fk(&[0.0, 0.0, 0.0, 0.0, -10.0, 0.0]));
+        let mut core = core_at(from);
+        let e = rejected(
+            &mut core,
+            move_l(1, target(p, rot), 200.0, 0.0, ToolData::tool0()),
+        );
+        assert_eq!(e.event(), Some((50026, "Close to singularity")));
+    }
+
+    #[test]
+    fn impossible_circle_is_refused() {
+        let (p0, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let mut core = core_at(START);
+        let cir = [p0[0], p0[1] + 100.0, p0[2]];
+        let to = [p0[0], p0[1] + 200.0, p0[2]];
+        let e = rejected(
+            &mut core,
+            move_c(
+                1,
+                target(cir, rot),
+                target(to, rot),
+                200.0,
+                0.0,
+                ToolData::tool0(),
+            ),
+        );
+        assert!(matches!(e, MotionError::CircleUncertain { .. }));
+    }
+
+    #[test]
+    fn bad_data_is_refused() {
+        let mut core = core_at(START);
+        let e = rejected(&mut core, abs_j(1, [0.0; 6], -5.0, 0.0));
+        assert!(matches!(e, MotionError::InvalidData { .. }));
+        let e = rejected(&mut core, abs_j(1, [f64::NAN; 6], 100.0, 0.0));
+        assert_eq!(e.event().map(|e| e.0), Some(50050));
+    }
+
+    #[test]
+    fn late_fly_by_becomes_a_stop_point() {
+        let (p0, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let p1 = [p0[0], p0[1] + 200.0, p0[2]];
+        let p2 = [p0[0], p0[1] + 200.0, p0[2] - 200.0];
+        let mut core = core_at(START);
+        let mut tick = 0;
+        core.enqueue(move_l(1, target(p1, rot), 500.0, 50.0, ToolData::tool0()))
+            .unwrap();
+        let first = run(&mut core, &mut tick);
+        assert!(first.last().unwrap().speed < 50.0);
+        let ev = core.take_event().expect("corner path failure");
+        assert_eq!(ev.error.event(), Some((50024, "Corner path failure")));
+        assert_eq!(ev.severity, Severity::Warning);
+        core.enqueue(move_l(2, target(p2, rot), 500.0, 0.0, ToolData::tool0()))
+            .unwrap();
+        run(&mut core, &mut tick);
+        assert!(core.take_event().is_none());
+    }
+
+    #[test]
+    fn queue_is_bounded() {
+        let mut core = core_at(START);
+        let mut full = false;
+        for i in 0..20 {
+            let q = [f64::from(i), 0.0, 0.0, 0.0, 35.0, 0.0];
+            match core.enqueue(abs_j(i as u64, q, 100.0, 10.0)) {
+                Ok(()) => {}
+                Err(EnqueueError::QueueFull(cmd)) => {
+                    assert_eq!(cmd.id(), i as u64);
+                    full = true;
+                    break;
+                }
+                Err(e) => panic!("{e}"),
+            }
+        }
+        assert!(full);
+        assert_eq!(
+            core.state().pending,
+            rapidvc::motion::CoreConfig::default().queue_capacity
+        );
+    }
+}
+
+mod configuration {
+    use super::*;
+    use rapidvc::motion::{EnqueueError, MotionError};
+    use rapidvc::robot::command::MotionCommand;
+    use rapidvc::robot::{ConfData, Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    fn conf_l(robconf: ConfData, check: bool) -> MotionCommand {
+        let (p, rot) = pose_to_pos_quat(&Robot::default().fk(&[5.0, 5.0, -5.0, 10.0, 35.0, 10.0]));
+        let mut t = target(p, rot);
+        t.robconf = robconf;
+        let mut cmd = move_l(1, t, 500.0, 0.0, ToolData::tool0());
+        if let MotionCommand::MoveL(m) = &mut cmd {
+            m.conf_check = check;
+        }
+        cmd
+    }
+
+    #[test]
+    fn conf_l_on_checks_the_end_configuration() {
+        let mut core = core_at(START);
+        let r = core.enqueue(conf_l(ConfData::new(0, 0, 0, 0), true));
+        assert!(r.is_ok(), "{r:?}");
+        let mut core = core_at(START);
+        match core.enqueue(conf_l(ConfData::new(0, 0, 1, 0), true)) {
+            Err(EnqueueError::Rejected(MotionError::ConfigurationChanged { wanted, reached })) => {
+                assert_eq!(wanted, ConfData::new(0, 0, 1, 0));
+                assert_eq!(reached, ConfData::new(0, 0, 0, 0));
+            }
+            other => panic!("{other:?}"),
+        }
+        // ConfL\Off ignores the programmed configuration.
+        let mut core = core_at(START);
+        assert!(
+            core.enqueue(conf_l(ConfData::new(0, 0, 1, 1), false))
+                .is_ok()
+        );
+    }
+}
