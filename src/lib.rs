@@ -14,7 +14,9 @@
 pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod controller;
 pub mod diag;
 pub mod motion;
+pub mod report;
 pub mod robot;
 pub mod source;

@@ -773,3 +773,272 @@ mod configuration {
         );
     }
 }
+
+mod controller {
+    use std::sync::{Arc, Mutex};
+
+    use super::*;
+    use rapidvc::controller::{
+        ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, RealtimeConfig,
+        TickSink,
+    };
+    use rapidvc::motion::{RobotTime, Setpoint};
+    use rapidvc::report::{TRACE_HEADER, TraceWriter};
+    use rapidvc::robot::command::MotionCommand;
+    use rapidvc::robot::{Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    /// A trace sink writing into shared memory.
+    struct SharedTrace(
+        Arc<Mutex<Option<TraceWriter<Vec<u8>>>>>,
+        Arc<Mutex<Vec<u8>>>,
+    );
+
+    impl TickSink for SharedTrace {
+        fn record(&mut self, sp: &Setpoint) {
+            if let Some(w) = self.0.lock().unwrap().as_mut() {
+                w.record(sp);
+            }
+        }
+        fn finish(&mut self) -> Result<(), String> {
+            let w = self.0.lock().unwrap().take().ok_or("finished twice")?;
+            *self.1.lock().unwrap() = w.into_inner()?;
+            Ok(())
+        }
+    }
+
+    fn program() -> Vec<MotionCommand> {
+        let (p0, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let p = |dx: f64, dy: f64, dz: f64| target([p0[0] + dx, p0[1] + dy, p0[2] + dz], rot);
+        vec![
+            move_j(1, p30(), 1000.0, 0.0, ToolData::tool0()),
+            move_l(2, p(0.0, 200.0, 0.0), 500.0, 20.0, ToolData::tool0()),
+            move_l(3, p(-100.0, 200.0, -150.0), 500.0, 20.0, ToolData::tool0()),
+            move_c(
+                4,
+                p(-150.0, 100.0, -200.0),
+                p(-100.0, 0.0, -250.0),
+                300.0,
+                10.0,
+                ToolData::tool0(),
+            ),
+            abs_j(5, START, 1000.0, 0.0),
+        ]
+    }
+
+    /// Run `program()` like an interpreter would: submit everything, wait at the end.
+    fn run_virtual() -> (Vec<u8>, rapidvc::controller::RunSummary) {
+        let out = Arc::new(Mutex::new(Vec::new()));
+        let writer = Arc::new(Mutex::new(Some(TraceWriter::new(Vec::new(), None))));
+        let sink = SharedTrace(writer, Arc::clone(&out));
+        let mut c = ControllerHandle::start(
+            ControllerConfig::new(Robot::default(), START),
+            vec![Box::new(sink)],
+        )
+        .unwrap();
+        for cmd in program() {
+            let fine = matches!(&cmd, MotionCommand::MoveJ(_) | MotionCommand::MoveAbsJ(_));
+            let id = cmd.id();
+            c.submit(cmd).unwrap();
+            if fine {
+                c.wait_until(Condition::Done(id)).unwrap();
+            }
+        }
+        c.wait_until(Condition::InPos).unwrap();
+        let summary = c.finish().unwrap();
+        let bytes = out.lock().unwrap().clone();
+        (bytes, summary)
+    }
+
+    #[test]
+    fn virtual_time_traces_are_byte_identical() {
+        let (a, sa) = run_virtual();
+        let (b, sb) = run_virtual();
+        assert!(a.len() > 10_000);
+        assert_eq!(a, b, "two virtual-time runs differ");
+        assert_eq!(sa.ticks, sb.ticks);
+        let text = String::from_utf8(a).unwrap();
+        let header = text.lines().next().unwrap();
+        assert_eq!(header, TRACE_HEADER.join(","));
+        assert!(header.starts_with("time_s,j1,j2,j3,j4,j5,j6,x,y,z,q1,q2,q3,q4"));
+        // One row per cycle plus the initial position.
+        assert_eq!(text.lines().count() as u64, sa.ticks + 2);
+        let first = text.lines().nth(1).unwrap();
+        assert!(
+            first.starts_with("0.000000,0.000000,0.000000,0.000000,0.000000,35.000000,0.000000,"),
+            "{first}"
+        );
+        assert!(text.lines().nth(2).unwrap().starts_with("0.004000,"));
+        assert!(text.contains(",MoveC,4,"));
+        // The summary line.
+        let line = sa.to_string();
+        assert!(line.starts_with("simulated "), "{line}");
+        assert!(
+            line.contains("final joints [0.00, 0.00, 0.00, 0.00, 35.00, 0.00]"),
+            "{line}"
+        );
+    }
+
+    #[test]
+    fn virtual_time_advances_only_while_waiting() {
+        let mut c = ControllerHandle::start(ControllerConfig::new(Robot::default(), START), vec![])
+            .unwrap();
+        assert_eq!(c.now(), RobotTime::ZERO);
+        c.submit(abs_j(1, [20.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
+            .unwrap();
+        // Submitting does not move time.
+        assert_eq!(c.now(), RobotTime::ZERO);
+        let st = c.wait_until(Condition::Done(1)).unwrap();
+        assert!((st.setpoint.joints[0] - 20.0).abs() < 1e-9);
+        let t_done = c.now();
+        assert!(t_done > RobotTime::ZERO);
+        // Already true: no time passes.
+        c.wait_until(Condition::InPos).unwrap();
+        assert_eq!(c.now(), t_done);
+        // WaitTime 0.1 s: 25 cycles, then stop.
+        let until = t_done.saturating_add(std::time::Duration::from_millis(100));
+        c.wait_until(Condition::TimeReached(until)).unwrap();
+        assert_eq!(c.now(), until);
+        // Waiting for a move that was never submitted would never end.
+        assert!(matches!(
+            c.wait_until(Condition::Done(99)),
+            Err(ControllerError::NeverSatisfied(_))
+        ));
+        // A predicate: wait until axis 1 passes 10° on the way back.
+        c.submit(abs_j(2, START, 1000.0, 0.0)).unwrap();
+        let st = c
+            .wait_until(Condition::Predicate(Box::new(|s| {
+                s.setpoint.joints[0] < 10.0
+            })))
+            .unwrap();
+        assert!(st.setpoint.joints[0] < 10.0 && st.setpoint.joints[0] > 5.0);
+        c.wait_until(Condition::InPos).unwrap();
+        c.finish().unwrap();
+    }
+
+    #[test]
+    fn a_full_queue_blocks_submit_and_runs_cycles() {
+        let mut c = ControllerHandle::start(ControllerConfig::new(Robot::default(), START), vec![])
+            .unwrap();
+        for i in 0..30u32 {
+            let q = [f64::from(i % 5) * 2.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+            c.submit(abs_j(u64::from(i) + 1, q, 1000.0, 5.0)).unwrap();
+        }
+        // RAPID ran ahead of the robot by at most the queue length.
+        let st = c.state();
+        assert!(st.pending <= rapidvc::motion::CoreConfig::default().queue_capacity);
+        assert!(c.now() > RobotTime::ZERO);
+        c.wait_until(Condition::InPos).unwrap();
+        assert!(c.state().done(30));
+    }
+
+    #[test]
+    fn refused_moves_report_abb_events() {
+        let mut c = ControllerHandle::start(ControllerConfig::new(Robot::default(), START), vec![])
+            .unwrap();
+        let (_, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let err = c.submit(move_l(
+            1,
+            target([3000.0, 0.0, 0.0], rot),
+            100.0,
+            0.0,
+            ToolData::tool0(),
+        ));
+        match err {
+            Err(ControllerError::Rejected(e)) => assert_eq!(e.event().map(|e| e.0), Some(50050)),
+            other => panic!("{other:?}"),
+        }
+        let events = c.take_events();
+        assert_eq!(events.len(), 1);
+        assert!(
+            events[0]
+                .to_string()
+                .starts_with("50050 Position outside reach"),
+            "{}",
+            events[0]
+        );
+        assert_eq!(c.now(), RobotTime::ZERO);
+    }
+
+    #[test]
+    fn real_time_mode_runs_the_same_moves() {
+        let mut cfg = ControllerConfig::new(Robot::default(), START);
+        cfg.clock = ClockMode::RealTime(RealtimeConfig::Ignore);
+        let mut c = ControllerHandle::start(cfg, vec![]).unwrap();
+        c.submit(abs_j(1, [5.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
+            .unwrap();
+        let st = c.wait_until(Condition::Done(1)).unwrap();
+        assert!((st.setpoint.joints[0] - 5.0).abs() < 1e-9);
+        let (_, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        assert!(matches!(
+            c.submit(move_l(
+                2,
+                target([3000.0, 0.0, 0.0], rot),
+                100.0,
+                0.0,
+                ToolData::tool0()
+            )),
+            Err(ControllerError::Rejected(_))
+        ));
+        let summary = c.finish().unwrap();
+        assert!(summary.realtime);
+        assert!(summary.ticks > 10);
+        assert!((summary.final_joints[0] - 5.0).abs() < 1e-9);
+        assert!(summary.period_stats.is_some());
+    }
+}
+
+mod plots {
+    use super::*;
+    use rapidvc::controller::{Condition, ControllerConfig, ControllerHandle};
+    use rapidvc::report::PlotRecorder;
+    use rapidvc::robot::{Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    #[test]
+    fn plots_render_to_svg_and_png() {
+        let dir = std::env::temp_dir().join(format!("rapidvc-plot-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let svg = dir.join("run.svg");
+        let png = dir.join("run.png");
+        let sinks: Vec<Box<dyn rapidvc::controller::TickSink>> = vec![
+            Box::new(PlotRecorder::new(&svg, "motion test", None).unwrap()),
+            Box::new(PlotRecorder::new(&png, "rapidvc — MoveJ/MoveL/MoveC demo", None).unwrap()),
+        ];
+        let mut c =
+            ControllerHandle::start(ControllerConfig::new(Robot::default(), START), sinks).unwrap();
+        let (p0, rot) = pose_to_pos_quat(&Robot::default().fk(&START));
+        let p = |dx: f64, dy: f64, dz: f64| target([p0[0] + dx, p0[1] + dy, p0[2] + dz], rot);
+        for cmd in [
+            move_j(1, p30(), 1000.0, 0.0, ToolData::tool0()),
+            abs_j(2, START, 1000.0, 50.0),
+            move_l(3, p(0.0, 300.0, 0.0), 800.0, 30.0, ToolData::tool0()),
+            move_l(4, p(-200.0, 300.0, -200.0), 800.0, 30.0, ToolData::tool0()),
+            move_c(
+                5,
+                p(-250.0, 150.0, -250.0),
+                p(-200.0, 0.0, -300.0),
+                400.0,
+                0.0,
+                ToolData::tool0(),
+            ),
+            abs_j(6, START, 1000.0, 0.0),
+        ] {
+            c.submit(cmd).unwrap();
+        }
+        c.wait_until(Condition::InPos).unwrap();
+        c.finish().unwrap();
+        let svg_text = std::fs::read_to_string(&svg).unwrap();
+        assert!(
+            svg_text.contains("<svg")
+                && svg_text.contains("Joint angles")
+                && svg_text.contains("MoveC")
+        );
+        let png_bytes = std::fs::read(&png).unwrap();
+        assert!(png_bytes.starts_with(b"\x89PNG"));
+        assert!(PlotRecorder::new(&dir.join("run.pdf"), "x", None).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
