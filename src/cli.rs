@@ -5,7 +5,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod bench;
 mod check;
+pub mod robots;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -21,11 +23,17 @@ pub struct Cli {
 pub enum Command {
     /// Check RAPID files or directories for syntax and semantic errors.
     Check(check::CheckArgs),
+    /// List the robot models with reach, axis ranges and speeds.
+    Robots(robots::RobotsArgs),
+    /// Measure the motion core: virtual-time speed, or real-time cycle jitter under load.
+    Bench(bench::BenchArgs),
 }
 
 /// Run the parsed command line and return the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
+        Command::Robots(args) => robots::run(args),
+        Command::Bench(args) => bench::run(args),
     }
 }

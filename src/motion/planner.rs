@@ -9,6 +9,7 @@
 mod corner;
 pub mod path;
 mod sampling;
+mod track;
 
 use std::time::Duration;
 

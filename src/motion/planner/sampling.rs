@@ -12,6 +12,8 @@ use super::super::segment::Sample;
 use super::super::settings::SingArea;
 use super::Planner;
 use super::path::Geometry;
+use super::track::Tracker;
+use crate::robot::JointsDeg;
 
 /// The longest move the planner accepts (s): every cycle of a move is kept in memory.
 pub const MAX_MOVE_SECONDS: f64 = 900.0;
@@ -148,48 +150,117 @@ impl Planner {
                 }
             }
             Geometry::Line { .. } | Geometry::Circle { .. } => {
-                let mut prev_q = self.start;
-                let mut prev_near = self.robot.near_singularity(&prev_q);
-                let allow_wrist = self.settings.singarea != SingArea::Off;
-                for k in 0..n {
-                    let s = if k + 1 == n {
-                        1.0
-                    } else {
-                        profile.position(sample_time(k, self.dt, duration))
-                    };
-                    let place = if k + 1 == n {
-                        PathPlace::Target
-                    } else {
-                        PathPlace::Along(s)
-                    };
-                    let Some(pose) = g.pose_at(s) else {
-                        return Ok(());
-                    };
-                    let flange = flange_target(&pose, &args.tool, &args.wobj, &args.pdisp);
+                self.sample_cartesian(g, args, profile, n, out)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Inverse kinematics of every cycle of a linear or circular move, with continuity: a
+    /// tracking solve from the extrapolated previous joints, or the analytic
+    /// `Robot::ik_nearest` from the previous joints when tracking fails.
+    fn sample_cartesian(
+        &self,
+        g: &Geometry,
+        args: &MoveArgs,
+        profile: &Profile,
+        n: usize,
+        out: &mut Vec<Sample>,
+    ) -> Result<(), MotionError> {
+        let duration = profile.duration();
+        let mut checker = SingularityWatch::new(self, &self.start);
+        let mut tracker = Tracker::default();
+        let (mut prev_q, mut prev_s) = (self.start, 0.0);
+        let mut before: Option<(JointsDeg, f64)> = None;
+        for k in 0..n {
+            let last = k + 1 == n;
+            let s = if last {
+                1.0
+            } else {
+                profile.position(sample_time(k, self.dt, duration))
+            };
+            let place = if last {
+                PathPlace::Target
+            } else {
+                PathPlace::Along(s)
+            };
+            let Some(pose) = g.pose_at(s) else {
+                return Ok(());
+            };
+            let flange = flange_target(&pose, &args.tool, &args.wobj, &args.pdisp);
+            let guess = match before {
+                Some((q2, s2)) if prev_s > s2 => {
+                    let r = (s - prev_s) / (prev_s - s2);
+                    let mut g = prev_q;
+                    for ((gi, a), b) in g.iter_mut().zip(&prev_q).zip(&q2) {
+                        *gi = a + (a - b) * r;
+                    }
+                    g
+                }
+                _ => prev_q,
+            };
+            let (q, fk) = match tracker.solve(&self.robot, &flange, &guess, &prev_q) {
+                Some(found) => found,
+                None => {
+                    tracker.reset();
                     let q = self
                         .robot
                         .ik_nearest(&flange, &prev_q)
                         .map_err(|error| MotionError::Kinematics { error, place })?;
-                    let near = self.robot.near_singularity(&q);
-                    if let Some(kind) = near {
-                        let entering = prev_near != Some(kind);
-                        let tolerated = kind == SingularityKind::Wrist && allow_wrist;
-                        if entering && !tolerated {
-                            return Err(MotionError::Kinematics {
-                                error: KinError::Singularity { kind, joints: q },
-                                place,
-                            });
-                        }
-                    }
-                    prev_near = near;
-                    out.push(Sample {
-                        q,
-                        tcp: self.robot.tcp_world(&q, &args.tool),
-                    });
-                    prev_q = q;
+                    (q, self.robot.fk(&q))
                 }
+            };
+            checker.check(&q, place)?;
+            out.push(Sample {
+                q,
+                tcp: tcp_of(&fk, &args.tool),
+            });
+            before = Some((prev_q, prev_s));
+            prev_q = q;
+            prev_s = s;
+        }
+        Ok(())
+    }
+}
+
+/// The TCP in world from the flange pose (as `Robot::tcp_world`).
+fn tcp_of(flange: &crate::robot::Pose, tool: &crate::robot::ToolData) -> crate::robot::Pose {
+    if tool.robhold {
+        flange * tool.tframe
+    } else {
+        tool.tframe
+    }
+}
+
+/// Refuses a linear path that runs into a singularity (SingArea\Wrist tolerates the wrist).
+struct SingularityWatch<'a> {
+    planner: &'a Planner,
+    prev: Option<SingularityKind>,
+    allow_wrist: bool,
+}
+
+impl<'a> SingularityWatch<'a> {
+    fn new(planner: &'a Planner, start: &crate::robot::JointsDeg) -> Self {
+        SingularityWatch {
+            planner,
+            prev: planner.robot.near_singularity(start),
+            allow_wrist: planner.settings.singarea != SingArea::Off,
+        }
+    }
+
+    fn check(&mut self, q: &crate::robot::JointsDeg, place: PathPlace) -> Result<(), MotionError> {
+        let near = self.planner.robot.near_singularity(q);
+        if let Some(kind) = near {
+            let entering = self.prev != Some(kind);
+            let tolerated = kind == SingularityKind::Wrist && self.allow_wrist;
+            if entering && !tolerated {
+                return Err(MotionError::Kinematics {
+                    error: KinError::Singularity { kind, joints: *q },
+                    place,
+                });
             }
         }
+        self.prev = near;
         Ok(())
     }
 }
