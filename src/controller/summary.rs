@@ -63,7 +63,13 @@ impl fmt::Display for RunSummary {
             if i > 0 {
                 f.write_str(", ")?;
             }
-            write!(f, "{:.2}", q + 0.0)?;
+            let text = format!("{q:.2}");
+            // Never print "-0.00".
+            f.write_str(
+                text.strip_prefix('-')
+                    .filter(|t| *t == "0.00")
+                    .unwrap_or(&text),
+            )?;
         }
         f.write_str("]")?;
         if let Some(s) = &self.period_stats {

@@ -170,8 +170,9 @@ impl Planner {
         let duration = profile.duration();
         let mut checker = SingularityWatch::new(self, &self.start);
         let mut tracker = Tracker::default();
-        let (mut prev_q, mut prev_s) = (self.start, 0.0);
-        let mut before: Option<(JointsDeg, f64)> = None;
+        let mut prev_q = self.start;
+        // The last three (joints, s) for the prediction of the next cycle.
+        let mut history: [Option<(JointsDeg, f64)>; 3] = [None, None, Some((self.start, 0.0))];
         for k in 0..n {
             let last = k + 1 == n;
             let s = if last {
@@ -188,17 +189,7 @@ impl Planner {
                 return Ok(());
             };
             let flange = flange_target(&pose, &args.tool, &args.wobj, &args.pdisp);
-            let guess = match before {
-                Some((q2, s2)) if prev_s > s2 => {
-                    let r = (s - prev_s) / (prev_s - s2);
-                    let mut g = prev_q;
-                    for ((gi, a), b) in g.iter_mut().zip(&prev_q).zip(&q2) {
-                        *gi = a + (a - b) * r;
-                    }
-                    g
-                }
-                _ => prev_q,
-            };
+            let guess = extrapolate(&history, s).unwrap_or(prev_q);
             let (q, fk) = match tracker.solve(&self.robot, &flange, &guess, &prev_q) {
                 Some(found) => found,
                 None => {
@@ -215,11 +206,36 @@ impl Planner {
                 q,
                 tcp: tcp_of(&fk, &args.tool),
             });
-            before = Some((prev_q, prev_s));
+            history = [history[1], history[2], Some((q, s))];
             prev_q = q;
-            prev_s = s;
         }
         Ok(())
+    }
+}
+
+/// Predict the joints at path parameter `s` from the last samples: quadratic (Lagrange in
+/// `s`) through three, linear through two.
+fn extrapolate(h: &[Option<(JointsDeg, f64)>; 3], s: f64) -> Option<JointsDeg> {
+    match h {
+        [Some((q0, s0)), Some((q1, s1)), Some((q2, s2))] if s0 < s1 && s1 < s2 => {
+            let l0 = (s - s1) * (s - s2) / ((s0 - s1) * (s0 - s2));
+            let l1 = (s - s0) * (s - s2) / ((s1 - s0) * (s1 - s2));
+            let l2 = (s - s0) * (s - s1) / ((s2 - s0) * (s2 - s1));
+            let mut q = *q2;
+            for (((qi, a), b), c) in q.iter_mut().zip(q0).zip(q1).zip(q2) {
+                *qi = l0 * a + l1 * b + l2 * c;
+            }
+            Some(q)
+        }
+        [_, Some((q1, s1)), Some((q2, s2))] if s1 < s2 => {
+            let r = (s - s2) / (s2 - s1);
+            let mut q = *q2;
+            for ((qi, a), b) in q.iter_mut().zip(q1).zip(q2) {
+                *qi = b + (b - a) * r;
+            }
+            Some(q)
+        }
+        _ => None,
     }
 }
 

@@ -1,28 +1,30 @@
-//! Cycle-to-cycle inverse kinematics for linear and circular moves: Newton steps from a
-//! predicted joint vector with a (reused) numerical Jacobian. It follows the current arm
+//! Cycle-to-cycle inverse kinematics for linear and circular moves: quasi-Newton steps from a
+//! predicted joint vector with a Broyden-updated Jacobian. It follows the current arm
 //! branch by construction and costs a few forward kinematics per cycle instead of a full
 //! analytic solve; when it does not converge (near a singularity), leaves the axis ranges or
 //! jumps, the caller falls back to `Robot::ik_nearest`.
 
-use nalgebra::{LU, Matrix6, U6, Vector6};
+use nalgebra::{Matrix6, Vector6};
 
 use crate::robot::{JointsDeg, Pose, Robot};
 
 /// Converged when the flange is this close to the target (mm)…
-const TOL_MM: f64 = 1e-8;
+const TOL_MM: f64 = 1e-7;
 /// … and this close in orientation (rad).
-const TOL_RAD: f64 = 1e-11;
+const TOL_RAD: f64 = 1e-10;
 /// Newton steps per cycle before giving up.
-const MAX_STEPS: usize = 6;
+const MAX_STEPS: usize = 10;
 /// Finite-difference step for the Jacobian (deg).
 const JACOBIAN_STEP_DEG: f64 = 1e-5;
 /// A cycle-to-cycle solution moving any axis further than this (deg) is rejected.
 const MAX_JUMP_DEG: f64 = 30.0;
 
-/// Tracking IK state (the factorised Jacobian of a recent cycle).
+/// Tracking IK state: the Jacobian of a recent cycle, kept up to date between cycles by
+/// Broyden's rank-one updates (no extra forward kinematics) and refreshed numerically only
+/// when convergence slows down.
 #[derive(Default)]
 pub(super) struct Tracker {
-    lu: Option<LU<f64, U6, U6>>,
+    jac: Option<Matrix6<f64>>,
 }
 
 impl Tracker {
@@ -37,13 +39,13 @@ impl Tracker {
         prev: &JointsDeg,
     ) -> Option<(JointsDeg, Pose)> {
         let mut q = *guess;
-        let mut fresh = false;
+        let mut fk = robot.fk(&q);
+        let mut refreshed = false;
         for step in 0..MAX_STEPS {
-            let fk = robot.fk(&q);
             let e = error(target, &fk);
             let (pos, rot) = (e.fixed_rows::<3>(0).norm(), e.fixed_rows::<3>(3).norm());
             if !(pos.is_finite() && rot.is_finite()) {
-                return None;
+                break;
             }
             if pos <= TOL_MM && rot <= TOL_RAD {
                 let jump = q
@@ -53,25 +55,39 @@ impl Tracker {
                     .fold(0.0, f64::max);
                 return (jump <= MAX_JUMP_DEG && robot.check_limits(&q).is_ok()).then_some((q, fk));
             }
-            // A stale Jacobian converges slowly: refresh it after two steps.
-            if self.lu.is_none() || (step >= 2 && !fresh) {
-                self.lu = Some(jacobian(robot, &q, &fk).lu());
-                fresh = true;
+            // Refresh a missing or stale Jacobian (slow convergence: several steps so far).
+            if self.jac.is_none() || (step >= REFRESH_AFTER && !refreshed) {
+                self.jac = Some(jacobian(robot, &q, &fk));
+                refreshed = true;
             }
-            let dq = self.lu.as_ref()?.solve(&e)?;
-            for (qi, d) in q.iter_mut().zip(dq.iter()) {
+            let j = self.jac?;
+            let dq = j.lu().solve(&e)?;
+            let mut q_new = q;
+            for (qi, d) in q_new.iter_mut().zip(dq.iter()) {
                 *qi += d;
             }
+            let fk_new = robot.fk(&q_new);
+            // Broyden: make the Jacobian reproduce the change this step actually made.
+            let y = error(&fk_new, &fk);
+            let ss = dq.norm_squared();
+            if ss > 0.0 && ss.is_finite() {
+                self.jac = Some(j + (y - j * dq) * dq.transpose() / ss);
+            }
+            q = q_new;
+            fk = fk_new;
         }
-        self.lu = None;
+        self.jac = None;
         None
     }
 
     /// Forget the Jacobian (after a fallback to the analytic IK).
     pub fn reset(&mut self) {
-        self.lu = None;
+        self.jac = None;
     }
 }
+
+/// Refresh the Jacobian numerically after this many steps without convergence.
+const REFRESH_AFTER: usize = 4;
 
 /// `[Δposition (mm); Δorientation (rad, world frame)]` from `fk` to `target`.
 fn error(target: &Pose, fk: &Pose) -> Vector6<f64> {
