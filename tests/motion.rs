@@ -1042,3 +1042,183 @@ mod plots {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+mod settings_and_guidance {
+    use super::*;
+    use rapidvc::motion::{
+        EnqueueError, ExternalGuidance, GuidanceStep, MotionError, MotionSettings, RobotTime,
+        Severity, SingArea,
+    };
+    use rapidvc::robot::{JointsDeg, Robot, ToolData, pose_to_pos_quat};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    #[test]
+    fn sing_area_wrist_passes_the_wrist_singularity() {
+        let robot = Robot::default();
+        let from = [0.0, 0.0, 0.0, 0.0, 10.0, 0.0];
+        let (p, rot) = pose_to_pos_quat(&robot.fk(&[0.0, 0.0, 0.0, 0.0, -10.0, 0.0]));
+        let mut core = core_at(from);
+        core.set_settings(MotionSettings {
+            singarea: SingArea::Wrist,
+            ..MotionSettings::default()
+        });
+        // The straight path bends axis 5 through 0° (axes 4 and 6 stay put): refused under
+        // SingArea\Off (see errors::linear_path_through_the_wrist_singularity_is_refused),
+        // executed under \Wrist.
+        core.enqueue(move_l(1, target(p, rot), 200.0, 0.0, ToolData::tool0()))
+            .unwrap();
+        let mut tick = 0;
+        let sps = run(&mut core, &mut tick);
+        super::geo::assert_axis_speeds(&from, &sps);
+        let end = robot.fk(&sps.last().unwrap().joints);
+        assert!((end.translation.vector - nalgebra::Vector3::from(p)).norm() < 1e-6);
+        assert!(
+            sps.iter().any(|sp| sp.joints[4].abs() < 0.5),
+            "passes J5 = 0"
+        );
+        assert!(core.take_event().is_none());
+    }
+
+    #[test]
+    fn vel_set_and_acc_set_slow_moves_down() {
+        let cmd = || abs_j(1, [60.0, 0.0, 0.0, 0.0, 35.0, 0.0], 7000.0, 0.0);
+        let mut core = core_at(START);
+        let normal = run_all(&mut core, vec![cmd()]).len();
+        let mut core = core_at(START);
+        let mut s = MotionSettings::default();
+        s.velset.override_pct = 50.0;
+        core.set_settings(s);
+        let half = run_all(&mut core, vec![cmd()]).len();
+        // Axis speeds halve, accelerations stay: 0.59 s becomes 0.81 s.
+        assert!(half as f64 > 1.3 * normal as f64, "{normal} vs {half}");
+        let mut core = core_at(START);
+        let mut s = MotionSettings::default();
+        s.accset.acc_pct = 25.0;
+        core.set_settings(s);
+        let soft = run_all(&mut core, vec![cmd()]).len();
+        assert!(soft > normal, "{normal} vs {soft}");
+    }
+
+    #[test]
+    fn stationary_tool_moves_the_work_object_in_a_straight_line() {
+        use rapidvc::robot::command::MotionCommand;
+        use rapidvc::robot::{WobjData, pose_from_pos_quat};
+        let robot = Robot::default();
+        // A fixed torch in front of the robot, pointing up; the robot holds the part.
+        let tool = ToolData {
+            robhold: false,
+            tframe: pose_from_pos_quat([1300.0, 0.0, 900.0], [1.0, 0.0, 0.0, 0.0]),
+            ..ToolData::tool0()
+        };
+        let wobj = WobjData {
+            robhold: true,
+            uframe: pose_from_pos_quat([0.0, 0.0, 100.0], [1.0, 0.0, 0.0, 0.0]),
+            ..WobjData::wobj0()
+        };
+        // Where the torch is in the object frame now, and 100 mm further along object y.
+        let here = rapidvc::robot::frames::target_from_flange(
+            &robot.fk(&START),
+            &tool,
+            &wobj,
+            &rapidvc::robot::Pose::identity(),
+        );
+        let (p, rot) = pose_to_pos_quat(&here);
+        let to = target([p[0], p[1] + 100.0, p[2]], rot);
+        let mut cmd = move_l(1, to, 200.0, 0.0, tool);
+        if let MotionCommand::MoveL(m) = &mut cmd {
+            m.args.wobj = wobj.clone();
+        }
+        let mut core = core_at(START);
+        let sps = run_all(&mut core, vec![cmd]);
+        // In the object frame, the torch moves along a straight line.
+        for sp in &sps {
+            let t = robot.tcp_pose(&sp.joints, &tool, &wobj).translation.vector;
+            assert!(
+                (t.x - p[0]).abs() < 0.1 && (t.z - p[2]).abs() < 0.1,
+                "{t:?}"
+            );
+            // The trace's TCP is the fixed torch.
+            assert!((sp.tcp.translation.vector - tool.tframe.translation.vector).norm() < 1e-9);
+        }
+        super::geo::assert_axis_speeds(&START, &sps);
+    }
+
+    /// Moves axis 1 at `step` degrees per cycle for `n` cycles.
+    struct Jog {
+        step: f64,
+        n: usize,
+    }
+
+    impl ExternalGuidance for Jog {
+        fn step(&mut self, _now: RobotTime, current: &JointsDeg) -> GuidanceStep {
+            if self.n == 0 {
+                return GuidanceStep::Finished;
+            }
+            self.n -= 1;
+            let mut q = *current;
+            q[0] += self.step;
+            GuidanceStep::MoveTo(q)
+        }
+    }
+
+    #[test]
+    fn external_guidance_is_supervised() {
+        let mut core = core_at(START);
+        // Only at a stop point.
+        core.enqueue(abs_j(1, [10.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
+            .unwrap();
+        core.tick(RobotTime::from_nanos(4_000_000));
+        assert_eq!(
+            core.start_external(Box::new(Jog { step: 0.1, n: 10 }), ToolData::tool0(), None),
+            Err(MotionError::NotAtStopPoint)
+        );
+        let mut tick = 1;
+        run(&mut core, &mut tick);
+        core.start_external(Box::new(Jog { step: 0.1, n: 10 }), ToolData::tool0(), None)
+            .unwrap();
+        assert!(matches!(
+            core.enqueue(abs_j(2, START, 1000.0, 0.0)),
+            Err(EnqueueError::Rejected(MotionError::ExternalGuidance))
+        ));
+        while core.take_event().is_some() {}
+        for _ in 0..12 {
+            tick += 1;
+            core.tick(RobotTime::from_nanos(tick * 4_000_000));
+        }
+        let st = core.state();
+        assert!(
+            (st.setpoint.joints[0] - 11.0).abs() < 1e-9,
+            "{:?}",
+            st.setpoint.joints
+        );
+        assert_eq!(st.mode, rapidvc::motion::CoreMode::Planned);
+        // Planned motion resumes from where guidance left the robot.
+        let sps = run_all(&mut core, vec![abs_j(3, START, 1000.0, 0.0)]);
+        assert!(sps.last().unwrap().joints[0].abs() < 1e-9);
+        // A reference faster than axis 1 allows (175°/s = 0.7° per cycle) stops the robot.
+        core.start_external(Box::new(Jog { step: 2.0, n: 10 }), ToolData::tool0(), None)
+            .unwrap();
+        tick += 1000;
+        let sp = core.tick(RobotTime::from_nanos(tick * 4_000_000));
+        assert!(sp.standstill && sp.joints == START);
+        let st = core.state();
+        assert!(st.halted);
+        let ev = core.take_event().unwrap();
+        assert_eq!(ev.severity, Severity::Error);
+        assert!(
+            matches!(ev.error, MotionError::JointSpeed { joint: 1, .. }),
+            "{ev}"
+        );
+        // Halted until recovered.
+        assert!(matches!(
+            core.enqueue(abs_j(4, START, 1000.0, 0.0)),
+            Err(EnqueueError::Rejected(MotionError::Halted))
+        ));
+        core.recover();
+        assert!(
+            core.enqueue(abs_j(5, [1.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
+                .is_ok()
+        );
+    }
+}
