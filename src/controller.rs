@@ -100,6 +100,9 @@ pub enum ControllerError {
     /// A controller thread could not be started or has ended.
     #[error("{0}")]
     Thread(String),
+    /// The start position is not usable (outside the axis ranges or not finite).
+    #[error("invalid start position: {0}")]
+    InvalidStart(crate::robot::KinError),
     /// A trace or plot could not be written.
     #[error("{0}")]
     Sink(String),

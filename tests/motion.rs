@@ -1222,3 +1222,39 @@ mod settings_and_guidance {
         );
     }
 }
+
+mod config {
+    use rapidvc::controller::{ControllerConfig, ControllerError, ControllerHandle};
+    use rapidvc::motion::{CoreConfig, MotionCore, RobotTime};
+    use rapidvc::robot::Robot;
+
+    #[test]
+    fn unusable_configuration_is_clamped_or_refused() {
+        let mut cfg = ControllerConfig::new(Robot::default(), [0.0, 0.0, 100.0, 0.0, 0.0, 0.0]);
+        assert!(matches!(
+            ControllerHandle::start(cfg.clone(), vec![]),
+            Err(ControllerError::InvalidStart(_))
+        ));
+        cfg.start = [f64::NAN; 6];
+        assert!(matches!(
+            ControllerHandle::start(cfg, vec![]),
+            Err(ControllerError::InvalidStart(_))
+        ));
+        // A zero period and an empty queue are clamped, not a panic or a division by zero.
+        let bad = CoreConfig {
+            period: std::time::Duration::ZERO,
+            queue_capacity: 0,
+            event_capacity: 0,
+        };
+        let mut core = MotionCore::new(Robot::default(), bad, [0.0, 0.0, 0.0, 0.0, 35.0, 0.0]);
+        core.enqueue(super::abs_j(1, [1.0, 0.0, 0.0, 0.0, 35.0, 0.0], 100.0, 0.0))
+            .unwrap();
+        for k in 1..100_000u64 {
+            core.tick(RobotTime::from_nanos(k * 100_000));
+            if core.state().in_position() {
+                break;
+            }
+        }
+        assert!(core.state().in_position());
+    }
+}

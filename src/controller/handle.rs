@@ -50,8 +50,13 @@ impl ControllerHandle {
         config: ControllerConfig,
         mut sinks: Vec<Box<dyn TickSink>>,
     ) -> Result<ControllerHandle, ControllerError> {
+        config
+            .robot
+            .check_limits(&config.start)
+            .map_err(ControllerError::InvalidStart)?;
         let robot = config.robot.clone();
-        let core = MotionCore::new(config.robot, config.core, config.start);
+        let core_config = config.core.sanitized();
+        let core = MotionCore::new(config.robot, core_config, config.start);
         let driver = match config.clock {
             ClockMode::Virtual => {
                 let initial = core.state().setpoint;
@@ -60,7 +65,7 @@ impl ControllerHandle {
                 }
                 Driver::Virtual(Box::new(VirtualDriver::new(
                     core,
-                    config.core.period,
+                    core_config.period,
                     sinks,
                 )))
             }
@@ -69,7 +74,7 @@ impl ControllerHandle {
                 Driver::RealTime(Box::new(RealTimeDriver::start(
                     planner,
                     exec,
-                    config.core.queue_capacity,
+                    core_config.queue_capacity,
                     config.spin,
                     rt,
                     sinks,

@@ -33,8 +33,10 @@ pub struct MotionCore {
 }
 
 impl MotionCore {
-    /// A core for `robot` standing at `start`.
+    /// A core for `robot` standing at `start` (the configuration is clamped to its supported
+    /// range, see [`CoreConfig::sanitized`]).
     pub fn new(robot: Robot, config: CoreConfig, start: JointsDeg) -> MotionCore {
+        let config = config.sanitized();
         MotionCore {
             planner: Planner::new(robot.clone(), config.period, start),
             exec: Executor::new(robot, &config, start),

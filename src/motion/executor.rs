@@ -72,6 +72,7 @@ impl std::fmt::Debug for Executor {
 impl Executor {
     /// An idle executor holding the robot at `start`.
     pub fn new(robot: Robot, config: &CoreConfig, start: JointsDeg) -> Executor {
+        let config = config.sanitized();
         let capacity = config.queue_capacity.max(1);
         let tcp = robot.tcp_world(&start, &ToolData::tool0());
         Executor {

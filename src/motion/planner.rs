@@ -76,6 +76,10 @@ struct Extent {
 impl Planner {
     /// A planner for `robot` at cycle `period`, starting at joints `start`.
     pub fn new(robot: Robot, period: Duration, start: JointsDeg) -> Planner {
+        let period = period.clamp(
+            super::settings::PERIOD_RANGE.0,
+            super::settings::PERIOD_RANGE.1,
+        );
         Planner {
             robot,
             period,

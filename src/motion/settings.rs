@@ -20,6 +20,25 @@ pub const DEFAULT_PERIOD: Duration = Duration::from_millis(4);
 /// Default queue length (moves planned ahead of the robot).
 pub const DEFAULT_QUEUE_CAPACITY: usize = 8;
 
+/// Shortest and longest motion cycle the core accepts (other values are clamped).
+pub const PERIOD_RANGE: (Duration, Duration) =
+    (Duration::from_micros(100), Duration::from_millis(100));
+
+/// Longest queue and event log the core accepts (larger values are clamped).
+pub const MAX_CAPACITY: usize = 4096;
+
+impl CoreConfig {
+    /// The configuration with every value in its supported range: the period within
+    /// [`PERIOD_RANGE`], the queue and event log between 1 and [`MAX_CAPACITY`].
+    pub fn sanitized(&self) -> CoreConfig {
+        CoreConfig {
+            period: self.period.clamp(PERIOD_RANGE.0, PERIOD_RANGE.1),
+            queue_capacity: self.queue_capacity.clamp(1, MAX_CAPACITY),
+            event_capacity: self.event_capacity.clamp(1, MAX_CAPACITY),
+        }
+    }
+}
+
 impl Default for CoreConfig {
     fn default() -> Self {
         CoreConfig {
