@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 mod bench;
 mod check;
 pub mod robots;
+mod sensor;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
 #[derive(Debug, Parser)]
@@ -27,6 +28,9 @@ pub enum Command {
     Robots(robots::RobotsArgs),
     /// Measure the motion core: virtual-time speed, or real-time cycle jitter under load.
     Bench(bench::BenchArgs),
+    /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
+    /// print what arrives plus latency statistics.
+    Sensor(Box<sensor::SensorArgs>),
 }
 
 /// Run the parsed command line and return the process exit code.
@@ -35,5 +39,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(args),
         Command::Robots(args) => robots::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Sensor(args) => sensor::run(*args),
     }
 }

@@ -14,9 +14,13 @@
 pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
+pub mod config;
 pub mod controller;
 pub mod diag;
+pub mod egm;
+pub mod io;
 pub mod motion;
 pub mod report;
 pub mod robot;
+pub mod rtlib;
 pub mod source;

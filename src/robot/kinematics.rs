@@ -364,8 +364,8 @@ fn first_limit_violation(raw: &JointsDeg, limits: &[JointLimit; 6]) -> KinError 
             return joint_out_of_range(i, v, &limits[i]);
         }
     }
-    // Unreachable for a raw solution without in-limit variants; report the pose instead of
-    // panicking.
+    // Callers only pass solutions with an axis that fits nowhere, so this is not reached; it
+    // stays an error rather than a panic.
     KinError::NotFinite
 }
 

@@ -1,0 +1,157 @@
+//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices) and `MOC.cfg` (External Motion Interface Data).
+//!
+//! [`load_dir`] finds each domain's file case-insensitively in the directory (or in its
+//! `SYSPAR` subdirectory, the layout of a controller backup), adds it to the
+//! [`SourceMap`] so diagnostics can show it, parses it with the generic [`cfg`](mod@cfg) reader and
+//! hands the result to the domain reader ([`eio`], [`sio`], [`moc`]). A missing file is not
+//! an error: the built-in definitions apply (the built-in signals, the built-in sensor for
+//! every device, the predefined motion profile `"default"`). Every problem is a
+//! [`ConfigError`] in the [`Diagnostics`]; reading never stops at the first one.
+//!
+//! [`devices`] combines SIO.cfg with the command line's `--device` overrides into the table
+//! that decides where an EGM device name points.
+//!
+//! To add a domain: write `config/<domain>.rs` with a `read(&CfgFile, &mut Diagnostics) ->
+//! …Config`, add a field to [`Config`] and one `load_file` call in [`load_dir_with`].
+
+mod attr;
+pub mod cfg;
+pub mod devices;
+pub mod eio;
+mod error;
+pub mod moc;
+pub mod sio;
+
+use std::path::{Path, PathBuf};
+
+pub use error::ConfigError;
+
+use crate::diag::Diagnostics;
+use crate::io::{IoError, SignalDef, SignalTable, builtin_signals, merge_defs};
+use crate::source::{SourceMap, decode_bytes};
+
+/// Everything read from a configuration directory.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Config {
+    /// The signals of `EIO.cfg`, if the directory has one.
+    pub eio: Option<eio::EioConfig>,
+    /// The devices of `SIO.cfg`, if the directory has one (`None` makes every device the
+    /// built-in sensor; see [`devices`]).
+    pub sio: Option<sio::SioConfig>,
+    /// The motion profiles: the predefined `"default"` plus those of `MOC.cfg`.
+    pub moc: moc::MocConfig,
+}
+
+/// How [`load_dir_with`] reads the files.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// SIO.cfg options (the section names holding devices).
+    pub sio: sio::SioOptions,
+}
+
+impl Config {
+    /// The device table of SIO.cfg with the `--device` overrides.
+    pub fn device_table(
+        &self,
+        overrides: &[devices::DeviceOverride],
+    ) -> Result<devices::DeviceTable, devices::DeviceOverrideError> {
+        devices::DeviceTable::new(self.sio.as_ref(), overrides)
+    }
+
+    /// The built-in signals with EIO.cfg's definitions added (an EIO.cfg signal replaces a
+    /// built-in one of the same name).
+    pub fn signal_defs(&self) -> Vec<SignalDef> {
+        let from_file = self.eio.as_ref().map(|e| e.defs()).unwrap_or_default();
+        merge_defs(builtin_signals(), from_file)
+    }
+
+    /// A signal table of [`Config::signal_defs`].
+    pub fn signal_table(&self) -> Result<SignalTable, IoError> {
+        SignalTable::new(self.signal_defs())
+    }
+}
+
+/// The path of `file_name` in `dir` or `dir/SYSPAR`, matching names case-insensitively.
+pub fn find_file(dir: &Path, file_name: &str) -> Option<PathBuf> {
+    let find_in = |d: &Path, want_dir: bool| -> Option<PathBuf> {
+        std::fs::read_dir(d).ok()?.flatten().find_map(|e| {
+            let path = e.path();
+            let matches = e
+                .file_name()
+                .to_string_lossy()
+                .eq_ignore_ascii_case(if want_dir { "SYSPAR" } else { file_name });
+            (matches && path.is_dir() == want_dir).then_some(path)
+        })
+    };
+    find_in(dir, false).or_else(|| find_in(&find_in(dir, true)?, false))
+}
+
+/// Read one CFG file of domain `domain` (e.g. `EIO`): add it to `sources` and parse it.
+/// `None` (with a diagnostic) when it cannot be read, has no CFG header or holds another
+/// domain.
+pub fn load_file(
+    path: &Path,
+    domain: &str,
+    sources: &mut SourceMap,
+    diags: &mut Diagnostics,
+) -> Option<cfg::CfgFile> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            diags.push(ConfigError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            });
+            return None;
+        }
+    };
+    let text = decode_bytes(&bytes);
+    let id = sources.add(path.display().to_string(), text.as_str());
+    let file = cfg::parse(id, &text, diags)?;
+    if !file.domain.eq_ignore_ascii_case(domain) {
+        diags.push(ConfigError::WrongDomain {
+            src: id,
+            span: file.domain_span,
+            file: path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            expected: domain.to_string(),
+            found: file.domain.clone(),
+        });
+        return None;
+    }
+    Some(file)
+}
+
+/// Read the configuration files in `dir` (see the module doc) with the default options.
+pub fn load_dir(dir: &Path, sources: &mut SourceMap, diags: &mut Diagnostics) -> Config {
+    load_dir_with(dir, &LoadOptions::default(), sources, diags)
+}
+
+/// Read the configuration files in `dir` (see the module doc).
+pub fn load_dir_with(
+    dir: &Path,
+    options: &LoadOptions,
+    sources: &mut SourceMap,
+    diags: &mut Diagnostics,
+) -> Config {
+    if let Err(e) = std::fs::read_dir(dir) {
+        diags.push(ConfigError::Io {
+            path: dir.display().to_string(),
+            message: e.to_string(),
+        });
+        return Config::default();
+    }
+    let eio = find_file(dir, "EIO.cfg")
+        .and_then(|p| load_file(&p, "EIO", sources, diags))
+        .map(|f| eio::read(&f, diags));
+    let sio = find_file(dir, "SIO.cfg")
+        .and_then(|p| load_file(&p, "SIO", sources, diags))
+        .map(|f| sio::read_with(&f, &options.sio, diags));
+    let moc = find_file(dir, "MOC.cfg")
+        .and_then(|p| load_file(&p, "MOC", sources, diags))
+        .map(|f| moc::read(&f, diags))
+        .unwrap_or_default();
+    Config { eio, sio, moc }
+}

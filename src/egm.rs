@@ -1,0 +1,41 @@
+//! Externally Guided Motion (EGM): the ABB wire protocol (protobuf over UDP), sans-IO session, transport, built-in sensor and servo law.
+//!
+//! Layers, each in its own file:
+//! * [`proto`]: prost types generated from `proto/egm.proto` (ABB's names, V1.1 + RW7 fields).
+//! * [`types`]: plain domain data (mm, degrees, quaternion `[w, x, y, z]`).
+//! * [`convert`]: proto ↔ domain, with every validation rule of a receiving controller.
+//! * [`session`]: the controller side as a sans-IO state machine (`handle_datagram`,
+//!   `poll_transmit`, `poll_timeout`), in the style of quinn-proto.
+//! * [`transport`]: a thin `std::net::UdpSocket` shell that makes no protocol decisions.
+//! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
+//! * [`servo`]: the EGM control law the motion core calls each tick.
+//! * [`event`], [`stats`]: event-log entries and latency statistics.
+//!
+//! Nothing here may panic on input from the network: the lint wall below forbids `unwrap`,
+//! `expect` and panicking indexing outside tests.
+#![deny(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+pub mod convert;
+pub mod event;
+pub mod guidance;
+pub mod pathcorr;
+mod presence;
+pub mod proto;
+pub mod sensor;
+pub mod servo;
+pub mod session;
+pub mod stats;
+pub mod transport;
+pub mod types;
+
+pub use event::{EgmEvent, EventKind};
+pub use session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};
+pub use types::{
+    EgmMode, ExternalAxes, JointReference, Joints, MciState, MotorState, PathCorrection, Pose,
+    PoseReference, RapidData, RapidExecState, RobotFeedback, SensorHeader, SensorReference, Target,
+};
