@@ -9,6 +9,7 @@
 
 pub mod condition;
 pub mod handle;
+pub mod hook;
 pub mod monotonic;
 pub mod priority;
 mod realtime;
@@ -25,6 +26,7 @@ use crate::robot::{JointsDeg, Robot};
 
 pub use condition::Condition;
 pub use handle::ControllerHandle;
+pub use hook::CycleHook;
 pub use monotonic::MonotonicClock;
 pub use priority::RealtimeConfig;
 pub use sink::TickSink;

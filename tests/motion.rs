@@ -1182,6 +1182,8 @@ mod settings_and_guidance {
             Err(EnqueueError::Rejected(MotionError::ExternalGuidance))
         ));
         while core.take_event().is_some() {}
+        // The shell reaches the running guidance between cycles.
+        assert_eq!(core.guidance_as::<Jog>().map(|j| j.n), Some(10));
         for _ in 0..12 {
             tick += 1;
             core.tick(RobotTime::from_nanos(tick * 4_000_000));
@@ -1220,6 +1222,46 @@ mod settings_and_guidance {
             core.enqueue(abs_j(5, [1.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
                 .is_ok()
         );
+    }
+
+    /// Feeds the running `Jog` a new step before every cycle and counts cycles.
+    struct Feeder {
+        before: usize,
+    }
+
+    impl rapidvc::controller::CycleHook for Feeder {
+        fn before_tick(&mut self, _now: RobotTime, exec: &mut rapidvc::motion::Executor) {
+            self.before += 1;
+            if let Some(j) = exec.guidance_as::<Jog>() {
+                j.step = 0.5;
+            }
+        }
+    }
+
+    #[test]
+    fn the_cycle_hook_reaches_the_guidance() {
+        use rapidvc::controller::{Condition, ControllerConfig, ControllerHandle};
+        use rapidvc::motion::CoreMode;
+        let mut c = ControllerHandle::start_with_hook(
+            ControllerConfig::new(Robot::default(), START),
+            vec![],
+            Some(Box::new(Feeder { before: 0 })),
+        )
+        .unwrap();
+        c.start_external(Box::new(Jog { step: 0.0, n: 4 }), ToolData::tool0(), None)
+            .unwrap();
+        // 4 cycles of 0.5° (the step the hook sets), then the guidance ends.
+        let st = c
+            .wait_until(Condition::Predicate(Box::new(|s| {
+                s.mode == CoreMode::Planned
+            })))
+            .unwrap();
+        assert!(
+            (st.setpoint.joints[0] - 2.0).abs() < 1e-9,
+            "{:?}",
+            st.setpoint.joints
+        );
+        assert_eq!(c.finish().unwrap().ticks, 5);
     }
 }
 

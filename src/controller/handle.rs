@@ -14,6 +14,7 @@ use crate::robot::command::MotionCommand;
 use crate::robot::{Robot, ToolData};
 
 use super::condition::Condition;
+use super::hook::CycleHook;
 use super::monotonic::MonotonicClock;
 use super::realtime::RealTimeDriver;
 use super::rt::Control;
@@ -48,7 +49,17 @@ impl ControllerHandle {
     /// Start a controller. `sinks` receive every cycle's setpoint (the initial position first).
     pub fn start(
         config: ControllerConfig,
+        sinks: Vec<Box<dyn TickSink>>,
+    ) -> Result<ControllerHandle, ControllerError> {
+        ControllerHandle::start_with_hook(config, sinks, None)
+    }
+
+    /// Start a controller whose shell runs `hook` around every motion cycle (e.g. the EGM
+    /// exchange), on the motion thread in real time and inline in virtual time.
+    pub fn start_with_hook(
+        config: ControllerConfig,
         mut sinks: Vec<Box<dyn TickSink>>,
+        hook: Option<Box<dyn CycleHook>>,
     ) -> Result<ControllerHandle, ControllerError> {
         config
             .robot
@@ -67,6 +78,7 @@ impl ControllerHandle {
                     core,
                     core_config.period,
                     sinks,
+                    hook,
                 )))
             }
             ClockMode::RealTime(rt) => {
@@ -78,6 +90,7 @@ impl ControllerHandle {
                     config.spin,
                     rt,
                     sinks,
+                    hook,
                 )?))
             }
         };

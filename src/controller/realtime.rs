@@ -10,6 +10,7 @@ use crate::motion::segment::Segment;
 use crate::motion::{Executor, MotionEvent, Planner, Setpoint};
 
 use super::ControllerError;
+use super::hook::CycleHook;
 use super::monotonic::MonotonicClock;
 use super::priority::{RealtimeConfig, make_current_thread_realtime};
 use super::rt::{Control, Published, RtExit, RtLoop, Shared};
@@ -49,6 +50,7 @@ impl RealTimeDriver {
         spin: Duration,
         rt_config: RealtimeConfig,
         mut sinks: Vec<Box<dyn TickSink>>,
+        hook: Option<Box<dyn CycleHook>>,
     ) -> Result<RealTimeDriver, ControllerError> {
         let period = exec.period();
         let (seg_tx, seg_rx) = mpsc::sync_channel::<Segment>(1);
@@ -95,6 +97,7 @@ impl RealTimeDriver {
             recycle: recycle_tx,
             events: ev_tx,
             shared: Arc::clone(&shared),
+            hook,
         };
         let rt = std::thread::Builder::new()
             .name("rapidvc-motion".into())

@@ -17,6 +17,7 @@ use crate::motion::{
 };
 use crate::robot::ToolData;
 
+use super::hook::CycleHook;
 use super::monotonic::MonotonicClock;
 use super::stats::PeriodStats;
 
@@ -79,6 +80,7 @@ pub(super) struct RtLoop {
     pub recycle: SyncSender<crate::motion::segment::Segment>,
     pub events: SyncSender<MotionEvent>,
     pub shared: Arc<Shared>,
+    pub hook: Option<Box<dyn CycleHook>>,
 }
 
 impl RtLoop {
@@ -101,7 +103,13 @@ impl RtLoop {
             last_wake = Some(woke);
 
             let stop = self.take_inputs(&mut accepted);
+            if let Some(h) = self.hook.as_mut() {
+                h.before_tick(deadline, &mut self.exec);
+            }
             let sp = self.exec.tick(deadline);
+            if let Some(h) = self.hook.as_mut() {
+                h.after_tick(&sp, &mut self.exec);
+            }
             ticks += 1;
             if let Err(TrySendError::Full(_)) = self.records.try_send(sp) {
                 dropped_records += 1;

@@ -105,6 +105,11 @@ impl MotionCore {
         self.exec.tick(now)
     }
 
+    /// The executing half (for the shell's per-cycle hook).
+    pub fn executor_mut(&mut self) -> &mut Executor {
+        &mut self.exec
+    }
+
     /// A snapshot of the state.
     pub fn state(&self) -> MotionState {
         self.exec.state()
@@ -155,6 +160,17 @@ impl MotionCore {
         instr: Option<InstrRef>,
     ) -> Result<(), MotionError> {
         self.exec.start_external(guidance, tool, instr)
+    }
+
+    /// The running external guidance as its concrete type (see
+    /// [`Executor::guidance_as`]).
+    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
+        self.exec.guidance_as::<T>()
+    }
+
+    /// Take a guidance object that finished by itself.
+    pub fn take_retired_guidance(&mut self) -> Option<Box<dyn ExternalGuidance>> {
+        self.exec.take_retired()
     }
 
     /// End external guidance; planning restarts where the robot is.

@@ -226,6 +226,13 @@ impl Executor {
             .or_else(|| self.retired.take())
     }
 
+    /// The running external guidance, as its concrete type (between cycles: feed it the
+    /// newest reference, read its outputs).
+    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
+        let g: &mut dyn std::any::Any = self.external.as_mut()?.guidance.as_mut();
+        g.downcast_mut::<T>()
+    }
+
     /// Take a guidance object that finished by itself (to drop it outside the cycle).
     pub fn take_retired(&mut self) -> Option<Box<dyn ExternalGuidance>> {
         self.retired.take()

@@ -1,6 +1,8 @@
 //! The seam for external guidance (EGM): a per-cycle reference source that moves the robot
 //! instead of the planner, under the core's supervision (axis ranges and speeds).
 
+use std::any::Any;
+
 use crate::robot::JointsDeg;
 
 use super::clock::RobotTime;
@@ -20,7 +22,11 @@ pub enum GuidanceStep {
 ///
 /// `step` runs inside the motion cycle: it must not block, sleep, allocate or panic.
 /// Anything expensive belongs in the code that feeds it (the EGM session), outside the cycle.
-pub trait ExternalGuidance: Send {
+///
+/// The shell that owns the core reaches the running guidance between cycles with
+/// `MotionCore::guidance_as::<T>()` (or `Executor::guidance_as`) to hand it the newest sensor
+/// reference before a tick and read its outputs after it (`Any` makes the downcast possible).
+pub trait ExternalGuidance: Any + Send {
     /// The reference for the cycle at `now`, given the axis values of the previous cycle.
     fn step(&mut self, now: RobotTime, current: &JointsDeg) -> GuidanceStep;
 }
