@@ -1300,3 +1300,43 @@ mod config {
         assert!(core.state().in_position());
     }
 }
+
+mod cli {
+    use std::process::Command;
+
+    #[test]
+    fn robots_lists_models_with_reach_and_limits() {
+        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+            .arg("robots")
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(
+            text.starts_with("IRB 2600-12/1.85  (default)\n  reach 1853 mm"),
+            "{text}"
+        );
+        assert!(
+            text.contains("IRB 120-3/0.58") && text.contains("IRB 6700-200/2.60"),
+            "{text}"
+        );
+        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+            .args(["robots", "--robot", "irb120"])
+            .output()
+            .unwrap();
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(
+            text.contains("min (°)            -165     -110     -110     -160     -120     -400"),
+            "{text}"
+        );
+        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+            .args(["robots", "--robot", "irb9999"])
+            .output()
+            .unwrap();
+        assert!(!out.status.success());
+        assert!(
+            String::from_utf8_lossy(&out.stderr)
+                .contains("unknown or ambiguous robot model 'irb9999'")
+        );
+    }
+}
