@@ -1340,3 +1340,75 @@ mod cli {
         );
     }
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+    use rapidvc::motion::EnqueueError;
+    use rapidvc::robot::{Robot, ToolData};
+
+    const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+    fn command() -> impl Strategy<Value = (u8, [f64; 3], f64, f64, f64)> {
+        (
+            0u8..4,
+            [500.0f64..1900.0, -1200.0f64..1200.0, 100.0f64..2000.0],
+            -60.0f64..60.0,
+            50.0f64..3000.0,
+            prop_oneof![Just(0.0), 1.0f64..100.0],
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+        /// Any mix of moves (reachable or not, fine or fly-by): no panic, every cycle inside
+        /// the axis ranges and speed limits, and the robot ends at rest.
+        #[test]
+        fn moves_never_leave_limits(cmds in proptest::collection::vec(command(), 1..6)) {
+            let robot = Robot::default();
+            let model = robot.model();
+            let mut core = core_at(START);
+            let mut tick = 0;
+            let mut all = Vec::new();
+            for (i, (kind, p, turn, v, z)) in cmds.into_iter().enumerate() {
+                let a = turn.to_radians() / 2.0;
+                let t = target(p, [0.0, -a.sin(), a.cos(), 0.0]);
+                let id = i as u64 + 1;
+                let cmd = match kind {
+                    0 => move_l(id, t, v, z, ToolData::tool0()),
+                    1 => {
+                        let mut c = move_j(id, t, v, z, ToolData::tool0());
+                        if let rapidvc::robot::command::MotionCommand::MoveJ(m) = &mut c {
+                            m.conf_check = false;
+                        }
+                        c
+                    }
+                    2 => abs_j(id, [p[1] / 10.0, turn / 2.0, -turn / 2.0, turn, 30.0 + turn / 3.0, -turn], v, z),
+                    _ => {
+                        let cir = target([p[0] - 100.0, p[1] + 100.0, p[2]], t.rot);
+                        move_c(id, cir, t, v, z, ToolData::tool0())
+                    }
+                };
+                match core.enqueue(cmd) {
+                    Ok(()) | Err(EnqueueError::Rejected(_)) => {}
+                    Err(EnqueueError::QueueFull(_)) => prop_assert!(false, "queue full"),
+                }
+            }
+            // Everything queued first: fly-by points get their corner paths.
+            all.extend(run(&mut core, &mut tick));
+            let dt = DT.as_secs_f64();
+            let mut prev = START;
+            for sp in &all {
+                for i in 0..6 {
+                    let l = model.joint_limits[i];
+                    prop_assert!(sp.joints[i] >= l.min - 1e-9 && sp.joints[i] <= l.max + 1e-9);
+                    prop_assert!((sp.joints[i] - prev[i]).abs() / dt <= model.max_speed[i] * (1.0 + 1e-9));
+                }
+                prev = sp.joints;
+            }
+            prop_assert!(core.state().in_position());
+            prop_assert!(!core.state().halted);
+        }
+    }
+}
