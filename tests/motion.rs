@@ -1400,10 +1400,9 @@ mod properties {
             let dt = DT.as_secs_f64();
             let mut prev = START;
             for sp in &all {
-                for i in 0..6 {
-                    let l = model.joint_limits[i];
-                    prop_assert!(sp.joints[i] >= l.min - 1e-9 && sp.joints[i] <= l.max + 1e-9);
-                    prop_assert!((sp.joints[i] - prev[i]).abs() / dt <= model.max_speed[i] * (1.0 + 1e-9));
+                for (((q, p), l), vmax) in sp.joints.iter().zip(&prev).zip(&model.joint_limits).zip(&model.max_speed) {
+                    prop_assert!(*q >= l.min - 1e-9 && *q <= l.max + 1e-9);
+                    prop_assert!((q - p).abs() / dt <= vmax * (1.0 + 1e-9));
                 }
                 prev = sp.joints;
             }
