@@ -26,6 +26,7 @@ pub mod guidance;
 pub mod pathcorr;
 mod presence;
 pub mod proto;
+pub mod registry;
 pub mod sensor;
 pub mod servo;
 pub mod session;
@@ -34,6 +35,7 @@ pub mod transport;
 pub mod types;
 
 pub use event::{EgmEvent, EventKind};
+pub use registry::{CorrState, EgmError, EgmId, EgmRegistry, EgmState, RegistryConfig};
 pub use session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};
 pub use types::{
     EgmMode, ExternalAxes, JointReference, Joints, MciState, MotorState, PathCorrection, Pose,
