@@ -21,8 +21,10 @@
 )]
 
 pub mod convert;
+pub mod driver;
 pub mod event;
 pub mod guidance;
+pub mod log;
 pub mod pathcorr;
 mod presence;
 pub mod proto;
@@ -34,6 +36,9 @@ pub mod stats;
 pub mod transport;
 pub mod types;
 
+pub use driver::{
+    DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmSource, EgmStream, EgmTick, StreamTick,
+};
 pub use event::{EgmEvent, EventKind};
 pub use registry::{CorrState, EgmError, EgmId, EgmRegistry, EgmState, RegistryConfig};
 pub use session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};

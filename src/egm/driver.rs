@@ -1,0 +1,1051 @@
+//! One EGM run (EGMRunJoint / EGMRunPose) as a per-tick state machine for the controller's real-time loop: references in, servo step, `EgmRobot` out, convergence, stops and errors.
+//!
+//! # Use
+//!
+//! ```text
+//! plan   = registry.run_joint(id, &args, axes)?            // interpreter thread
+//! source = EgmSource::open(&plan.source)?                    // may bind a socket
+//! driver = EgmDriver::start(now, &ctx, &plan, source, &q)?   // q: the fine point
+//! every motion tick (4 ms):
+//!     t = driver.tick(now, &q)      // q: last commanded joints
+//!     command t.joints_cmd; while let Some(e) = driver.poll_event() { log e }
+//!     while let Some(row) = driver.pop_log() { egm-log }     // or later, off the RT path
+//!     if lockstep && driver.awaiting_reply() { driver.wait_reply(opts.reply_timeout) }
+//!     if let Some(result) = t.finished { registry.run_finished(id, result.is_ok()); … }
+//! EGMStop  → driver.stop(mode, ramp_out)    program stop → driver.halt()
+//! ```
+//!
+//! `now` is the controller's clock (real or virtual) as a [`Duration`] since its start
+//! (`RobotTime::since_start()`); it becomes `header.tm` and the `EgmClock`s.
+//!
+//! # Per tick
+//!
+//! 1. Receive: drain the UDP socket into the [`EgmSession`] (newest valid reference wins);
+//!    for signal sources, read the signals when a sample is due (every `\SampleRate`).
+//! 2. Reference: joint mode takes the joints (and `speedRef`) as they are; pose mode turns
+//!    the sensor pose into joints with [`PoseGuidance::joint_target`] (IK nearest to
+//!    `current`, supervised) and `speedRef.cartesians` into joint speeds through the
+//!    Jacobian. A reference that cannot be reached (50050), needs an axis beyond its limit
+//!    (50027) or lies close to a singularity (50026) ends the run with that error: the EGM
+//!    speed ramps to zero over the profile's ramp time, then `finished` is `Err`. A joint
+//!    reference beyond an axis limit is dropped with event 90105 ("input out of bounds") and
+//!    the previous one stays in force.
+//! 3. Servo step ([`EgmServo`]): the control law, MaxSpeedDeviation (event 90110 when it
+//!    starts limiting — at the default 1 °/s it usually does), MaxPosDeviation (90111), and
+//!    the robot's axis ranges (90112): the command never crosses a joint limit.
+//! 4. Send the `EgmRobot` when due: `feedBack` = the measured (servo-delayed) position,
+//!    `planned` = the commanded one; the Cartesian parts are the TCP of `\Tool` relative to
+//!    the correction frame in pose mode and to `\WObj` in joint mode (guidance's feedback
+//!    rules); MOTORS_ON, RAPID_RUNNING (RAPID_STOPPED after [`EgmDriver::halt`]), MCI
+//!    RUNNING (STOPPED after a halt, ERROR after an error); `mciConvergenceMet`;
+//!    `utilizationRate` = requested EGM speed / MaxSpeedDeviation.
+//! 5. Convergence: every selected axis (direction) inside its window, held continuously for
+//!    `\CondTime` → the stop mode runs (HOLD settles, RAMP_DOWN returns to the start) →
+//!    `finished` = `Ok(EgmEnd::Converged)`. Convergence only counts once a reference
+//!    arrived.
+//! 6. Comm time-out: no valid sensor message within `\CommTimeout` → the EGM speed ramps out
+//!    over the profile's ramp time → `Err(EgmError::CommTimeout)` (event 41822,
+//!    `ERR_UDPUC_COMM`).
+//!
+//! `finished` is reported on exactly one tick ([`EgmDriver::outcome`] keeps it). The events
+//! of [`EgmDriver::poll_event`] never repeat the error in `finished`.
+//!
+//! # Lockstep (virtual time driven by an external sensor)
+//!
+//! After a tick that sent to an external sensor, [`EgmDriver::awaiting_reply`] is true until
+//! a valid reply arrived. [`EgmDriver::wait_reply`] blocks (real time, outside the tick) up
+//! to a per-message time-out for it, so a virtual-time controller advances only when the
+//! sensor has answered and runs as fast as the sensor allows. This relies on the sensor
+//! replying once per received message, which all four tested clients do (abb_libegm,
+//! abb_robot_client, ABBRobotEGM, abbegm); a sensor that sends on its own timer instead
+//! makes every message wait for the time-out. Clients that check `header.tm` against real
+//! time (abb_libegm's `isConnected`) see virtual milliseconds.
+//!
+//! Nothing here panics, and `tick` neither sleeps nor blocks (the UDP socket is
+//! non-blocking); it allocates only for event texts, and in pose mode inside the IK.
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use crate::egm::convert::{EncodeOptions, ReferenceLimits, euler_zyx_from_quaternion};
+use crate::egm::event::{EgmEvent, EventKind};
+use crate::egm::guidance::{
+    FeedbackMode, GuidanceError, PoseGuidance, SignalSource, feedback_in_wobj,
+};
+use crate::egm::log::{DEFAULT_LOG_CAPACITY, LogKind, LogRing, LogRow};
+use crate::egm::registry::{EgmError, RunPlan};
+use crate::egm::sensor::SensorStats;
+use crate::egm::servo::{
+    DEFAULT_RAMP_TIME, DEFAULT_SERVO_DELAY, EgmServo, EndCause, ServoInput, ServoOutput,
+    ServoPhase, StopMode, axis_limit_event, pos_clamp_event, speed_limit_event,
+};
+use crate::egm::session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};
+use crate::egm::types::{
+    EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
+    RapidExecState, RobotFeedback, SensorReference, Target,
+};
+use crate::io::{SignalId, SignalTable};
+use crate::robot::{Pose, Robot, ToolData, WobjData};
+
+mod source;
+mod stream;
+
+pub use source::EgmSource;
+use source::{BUILTIN_ADDR, Peer};
+pub use stream::{EgmStream, StreamTick};
+
+/// Most events waiting in a driver; further ones are counted and lost.
+pub const MAX_EVENTS: usize = 64;
+/// Default lockstep wait for one reply (real time).
+pub const DEFAULT_REPLY_TIMEOUT: Duration = Duration::from_millis(100);
+
+/// rapidvc options of every EGM run and stream (not RAPID arguments).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriverOptions {
+    /// The motion tick the driver is called at (4 ms).
+    pub tick: Duration,
+    /// Delay from commanded to measured position (12 ms; see `egm::servo`).
+    pub servo_delay: Duration,
+    /// How received references are consumed (newest per cycle).
+    pub queue: QueuePolicy,
+    /// Which senders a UdpUc session accepts (the device's remote IP).
+    pub source_filter: SourceFilter,
+    /// Extra `EgmRobot` content.
+    pub encode: EncodeOptions,
+    /// Repeated session events are reported at most this often.
+    pub event_repeat: Duration,
+    /// Lockstep: how long [`EgmDriver::wait_reply`] waits for one reply (real time).
+    pub reply_timeout: Duration,
+    /// Rows kept in the log ring (0: no log).
+    pub log_capacity: usize,
+}
+
+impl Default for DriverOptions {
+    fn default() -> Self {
+        DriverOptions {
+            tick: Duration::from_millis(4),
+            servo_delay: DEFAULT_SERVO_DELAY,
+            queue: QueuePolicy::Newest,
+            source_filter: SourceFilter::RemoteIp,
+            encode: EncodeOptions::default(),
+            event_repeat: Duration::from_secs(1),
+            reply_timeout: DEFAULT_REPLY_TIMEOUT,
+            log_capacity: DEFAULT_LOG_CAPACITY,
+        }
+    }
+}
+
+/// What every run and stream of a controller shares.
+#[derive(Clone, Debug)]
+pub struct DriverContext {
+    /// The robot (model, base).
+    pub robot: Robot,
+    /// The I/O signals (signal sources, `\DOToSensor`, `\DIFromSensor`).
+    pub signals: Arc<SignalTable>,
+    /// rapidvc options.
+    pub options: DriverOptions,
+}
+
+/// How a run ended without error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EgmEnd {
+    /// Convergence held for `\CondTime`; the stop mode ran.
+    Converged,
+    /// EGMStop ended it.
+    Stopped,
+    /// A program stop ramped it out ([`EgmDriver::halt`]); when the program starts again the
+    /// controller may start a new driver from the same plan (the run resumes from where the
+    /// robot stands, with a new session, seqno 0).
+    Halted,
+    /// No axis or direction was selected: no movement, RAPID continues.
+    NoMovement,
+}
+
+/// The result of one tick.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EgmTick {
+    /// The joints to command this tick, degrees (never beyond an axis limit).
+    pub joints_cmd: Joints,
+    /// The measured (servo-delayed) joints sent as feedback, degrees.
+    pub feedback: Joints,
+    /// The convergence criteria are met right now.
+    pub converged: bool,
+    /// The servo phase.
+    pub phase: ServoPhase,
+    /// The MCI state sent.
+    pub mci_state: MciState,
+    /// `utilizationRate`, percent.
+    pub utilization: f64,
+    /// MaxSpeedDeviation limited the speed this tick.
+    pub speed_limited: bool,
+    /// An `EgmRobot` went out this tick (or the signals were sampled).
+    pub sent: bool,
+    /// Events waiting in [`EgmDriver::poll_event`].
+    pub events: usize,
+    /// Set on the one tick the run finished.
+    pub finished: Option<Result<EgmEnd, EgmError>>,
+}
+
+/// A bounded event queue.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct EventQueue {
+    q: VecDeque<EgmEvent>,
+    dropped: u64,
+}
+
+impl EventQueue {
+    fn with_capacity() -> EventQueue {
+        EventQueue {
+            q: VecDeque::with_capacity(MAX_EVENTS),
+            dropped: 0,
+        }
+    }
+
+    pub(crate) fn push(&mut self, e: EgmEvent) {
+        if self.q.len() >= MAX_EVENTS {
+            self.dropped += 1;
+        } else {
+            self.q.push_back(e);
+        }
+    }
+
+    fn pop(&mut self) -> Option<EgmEvent> {
+        self.q.pop_front()
+    }
+
+    fn len(&self) -> usize {
+        self.q.len()
+    }
+}
+
+/// How references arrive.
+#[derive(Debug)]
+enum Link {
+    /// UdpUc or built-in: an EGM session.
+    Session {
+        session: Box<EgmSession>,
+        peer: Peer,
+        buf: Vec<u8>,
+        device: String,
+    },
+    /// Signals, sampled every `period`.
+    Signals {
+        source: SignalSource,
+        next_sample: Duration,
+        samples: u32,
+    },
+}
+
+/// What arrived this tick (a short-lived stack value: boxing it would allocate per tick).
+#[allow(clippy::large_enum_variant)]
+enum Incoming {
+    Sensor(SensorReference),
+    Signals(SignalSource, u32),
+}
+
+/// One EGM run (see the module docs).
+#[derive(Debug)]
+pub struct EgmDriver {
+    name: String,
+    instruction: &'static str,
+    mode: EgmMode,
+    robot: Robot,
+    signals: Arc<SignalTable>,
+    tick_period: Duration,
+    servo_delay: Duration,
+    sample_period: Duration,
+    halt_ramp: Duration,
+    ramp_out: Duration,
+    comm_timeout: Duration,
+    guidance: Option<Box<PoseGuidance>>,
+    tool: ToolData,
+    wobj: WobjData,
+    servo: EgmServo,
+    link: Link,
+    start: Joints,
+    input: ServoInput,
+    have_reference: bool,
+    ordered: Option<Pose>,
+    cmd: Joints,
+    fb: Joints,
+    fb_pose: WirePose,
+    planned_pose: WirePose,
+    exec: RapidExecState,
+    mci: MciState,
+    error: Option<EgmError>,
+    outcome: Option<Result<EgmEnd, EgmError>>,
+    no_movement: bool,
+    events: EventQueue,
+    log: LogRing,
+    pending: Option<LogRow>,
+    awaiting: bool,
+    now: Duration,
+    do_to_sensor: Option<SignalId>,
+    di_from_sensor: Option<SignalId>,
+    out_of_bounds: bool,
+    speed_ref_reported: bool,
+}
+
+impl EgmDriver {
+    /// Starts `plan` at `now` from `current` (the fine point the robot stands in) with an
+    /// opened `source`.
+    ///
+    /// Errors: `current` not finite or beyond an axis limit ([`EgmError::Supervision`]);
+    /// frames, tool or work object pose guidance cannot use ([`EgmError::Guidance`]); servo
+    /// parameters out of range ([`EgmError::Servo`]); a built-in pattern of another mode
+    /// ([`EgmError::BadDevice`]). On error the registry must hear
+    /// [`crate::egm::EgmRegistry::run_finished`] with `ok = false`.
+    pub fn start(
+        now: Duration,
+        ctx: &DriverContext,
+        plan: &RunPlan,
+        source: EgmSource,
+        current: &Joints,
+    ) -> Result<EgmDriver, EgmError> {
+        let instruction = plan.instruction;
+        let opts = &ctx.options;
+        if opts.tick.is_zero() {
+            return Err(EgmError::BadSetup {
+                instruction,
+                detail: "the motion tick must be longer than zero".to_string(),
+            });
+        }
+        if !current.iter().all(|v| v.is_finite()) {
+            return Err(EgmError::Supervision(GuidanceError::NotFinite {
+                what: "start position",
+            }));
+        }
+        ctx.robot
+            .check_limits(current)
+            .map_err(|e| EgmError::Supervision(e.into()))?;
+        let guidance = match (&plan.pose, plan.mode) {
+            (Some(setup), EgmMode::Pose) => Some(Box::new(
+                PoseGuidance::new(&ctx.robot, setup, current).map_err(|source| {
+                    EgmError::Guidance {
+                        instruction,
+                        source,
+                    }
+                })?,
+            )),
+            (None, EgmMode::Pose) => {
+                return Err(EgmError::BadSetup {
+                    instruction,
+                    detail: "a pose-mode run needs its frames (EGMActPose)".to_string(),
+                });
+            }
+            _ => None,
+        };
+        let params = plan.servo_params(opts.tick, opts.servo_delay, &ctx.robot);
+        let servo = EgmServo::new(params, *current).map_err(|source| EgmError::Servo {
+            instruction,
+            source,
+        })?;
+        let moves = plan.moves();
+        let link = match source {
+            EgmSource::Udp { device, transport } => {
+                let mut session = new_session(plan, ctx, transport.remote(), opts.source_filter)?;
+                if moves {
+                    session.start(now);
+                }
+                Link::Session {
+                    session: Box::new(session),
+                    peer: Peer::Udp(transport),
+                    buf: Vec::with_capacity(512),
+                    device,
+                }
+            }
+            EgmSource::Builtin { device, pattern } => {
+                if pattern.mode() != plan.mode {
+                    return Err(EgmError::BadDevice {
+                        instruction,
+                        device,
+                        detail: format!(
+                            "the built-in sensor talks {} mode, the run is in {} mode",
+                            pattern.mode(),
+                            plan.mode
+                        ),
+                    });
+                }
+                let origin = guidance
+                    .as_ref()
+                    .map(|g| WirePose::from(g.start_sensor_pose()));
+                let peer = Peer::builtin(&device, pattern, origin)?;
+                let mut session = new_session(plan, ctx, BUILTIN_ADDR, SourceFilter::Any)?;
+                if moves {
+                    session.start(now);
+                }
+                Link::Session {
+                    session: Box::new(session),
+                    peer,
+                    buf: Vec::with_capacity(512),
+                    device,
+                }
+            }
+            EgmSource::Signals { source, .. } => Link::Signals {
+                source,
+                next_sample: now,
+                samples: 0,
+            },
+        };
+        let halt_ramp =
+            Duration::try_from_secs_f64(plan.profile.ramp_time).unwrap_or(DEFAULT_RAMP_TIME);
+        let mut driver = EgmDriver {
+            name: plan.name.clone(),
+            instruction,
+            mode: plan.mode,
+            robot: ctx.robot.clone(),
+            signals: Arc::clone(&ctx.signals),
+            tick_period: opts.tick,
+            servo_delay: opts.servo_delay,
+            sample_period: plan.sample_period,
+            halt_ramp,
+            ramp_out: plan.ramp_out_time,
+            comm_timeout: plan.comm_timeout,
+            guidance,
+            tool: plan.tool,
+            wobj: plan.wobj.clone(),
+            servo,
+            link,
+            start: *current,
+            input: ServoInput::position(*current),
+            have_reference: false,
+            ordered: None,
+            cmd: *current,
+            fb: *current,
+            fb_pose: WirePose::IDENTITY,
+            planned_pose: WirePose::IDENTITY,
+            exec: RapidExecState::Running,
+            mci: MciState::Running,
+            error: None,
+            outcome: None,
+            no_movement: !moves,
+            events: EventQueue::with_capacity(),
+            log: LogRing::new(&plan.name, opts.log_capacity),
+            pending: None,
+            awaiting: false,
+            now,
+            do_to_sensor: plan.do_to_sensor,
+            di_from_sensor: plan.di_from_sensor,
+            out_of_bounds: false,
+            speed_ref_reported: false,
+        };
+        let start_pose = driver.cartesian(current).unwrap_or(WirePose::IDENTITY);
+        driver.fb_pose = start_pose;
+        driver.planned_pose = start_pose;
+        Ok(driver)
+    }
+
+    /// The identity's variable name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// `EGMRunJoint` or `EGMRunPose`.
+    pub fn instruction(&self) -> &'static str {
+        self.instruction
+    }
+
+    /// Joint or pose.
+    pub fn mode(&self) -> EgmMode {
+        self.mode
+    }
+
+    /// The servo phase.
+    pub fn phase(&self) -> ServoPhase {
+        self.servo.phase()
+    }
+
+    /// The joints the run started at.
+    pub fn start_joints(&self) -> &Joints {
+        &self.start
+    }
+
+    /// The last commanded joints.
+    pub fn commanded(&self) -> &Joints {
+        &self.cmd
+    }
+
+    /// The result, once finished.
+    pub fn outcome(&self) -> Option<&Result<EgmEnd, EgmError>> {
+        self.outcome.as_ref()
+    }
+
+    /// True once finished.
+    pub fn is_finished(&self) -> bool {
+        self.outcome.is_some()
+    }
+
+    /// The session's counters (UdpUc and built-in sources).
+    pub fn session_stats(&self) -> Option<&EgmStats> {
+        match &self.link {
+            Link::Session { session, .. } => Some(session.stats()),
+            Link::Signals { .. } => None,
+        }
+    }
+
+    /// The in-process built-in sensor's counters.
+    pub fn sensor_stats(&self) -> Option<&SensorStats> {
+        match &self.link {
+            Link::Session {
+                peer: Peer::Builtin(Some(sensor)),
+                ..
+            } => Some(sensor.stats()),
+            _ => None,
+        }
+    }
+
+    /// The local address of a UdpUc device's socket.
+    pub fn local_addr(&self) -> Option<std::net::SocketAddr> {
+        match &self.link {
+            Link::Session {
+                peer: Peer::Udp(t), ..
+            } => t.local_addr().ok(),
+            _ => None,
+        }
+    }
+
+    /// The next event (speed limit, clamps, dropped datagrams, …).
+    pub fn poll_event(&mut self) -> Option<EgmEvent> {
+        self.events.pop()
+    }
+
+    /// The oldest log row.
+    pub fn pop_log(&mut self) -> Option<LogRow> {
+        self.log.pop()
+    }
+
+    /// The log ring (for [`crate::egm::log::EgmLogWriter::drain`]).
+    pub fn log_mut(&mut self) -> &mut LogRing {
+        &mut self.log
+    }
+
+    /// `EGMStop Mode \RampOutTime`: ends the run (`ramp_out` for RAMP_DOWN; the run's
+    /// `\RampOutTime` when `None`). Ignored once the run is ending.
+    pub fn stop(&mut self, mode: StopMode, ramp_out: Option<Duration>) {
+        if self.outcome.is_none() {
+            self.servo.stop(mode, ramp_out.unwrap_or(self.ramp_out));
+        }
+    }
+
+    /// Program stop: the EGM speed ramps to zero over the profile's Default Ramp Time while
+    /// the robot keeps sending with RAPID_STOPPED and MCI_STOPPED; then `finished` is
+    /// `Ok(EgmEnd::Halted)`.
+    pub fn halt(&mut self) {
+        if self.outcome.is_none() {
+            self.exec = RapidExecState::Stopped;
+            if self.error.is_none() {
+                self.mci = MciState::Stopped;
+            }
+            self.servo.halt(self.halt_ramp);
+        }
+    }
+
+    /// Lockstep: a message went to an external sensor and no valid reply came yet.
+    pub fn awaiting_reply(&self) -> bool {
+        self.awaiting && self.outcome.is_none()
+    }
+
+    /// Lockstep: blocks up to `timeout` (real time) for the reply to the last message and
+    /// hands it to the session; returns whether a valid reply arrived. Either way the
+    /// driver stops waiting for this message. Datagrams from other senders or that are
+    /// invalid are dropped as usual and do not end the wait. Never call it inside the
+    /// real-time tick.
+    pub fn wait_reply(&mut self, timeout: Duration) -> bool {
+        if !self.awaiting_reply() {
+            return false;
+        }
+        self.awaiting = false;
+        let now = self.now;
+        let Link::Session { session, peer, .. } = &mut self.link else {
+            return false;
+        };
+        let Some(transport) = peer.transport() else {
+            return false;
+        };
+        let deadline = Instant::now() + timeout;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return false;
+            }
+            match transport.recv_timeout(left) {
+                Ok(Some((src, bytes))) => {
+                    if session.handle_datagram(now, src, bytes) == Outcome::Accepted {
+                        return true;
+                    }
+                }
+                Ok(None) => return false,
+                Err(e) => {
+                    self.events.push(EgmEvent::new(
+                        EventKind::SendError,
+                        format!("receiving from the UdpUc device failed: {e}"),
+                    ));
+                    return false;
+                }
+            }
+        }
+    }
+
+    /// One motion tick at `now`; `current` are the joints commanded last (normally the
+    /// previous tick's `joints_cmd`), used as the IK seed.
+    pub fn tick(&mut self, now: Duration, current: &Joints) -> EgmTick {
+        self.now = now;
+        if self.outcome.is_some() {
+            return self.idle_tick(None);
+        }
+        if self.no_movement {
+            self.finish(Ok(EgmEnd::NoMovement));
+            return self.idle_tick(self.outcome.clone());
+        }
+        let (incoming, timed_out) = self.receive(now);
+        let running = self.servo.phase() == ServoPhase::Running;
+        let mut sample: Option<(u32, [f64; 6])> = None;
+        match incoming {
+            Some(Incoming::Sensor(r)) if running => self.apply_sensor(&r, current),
+            Some(Incoming::Sensor(r)) => self.log_reply(&r),
+            Some(Incoming::Signals(src, n)) => {
+                sample = self.read_signals(&src, current, running).map(|r| (n, r));
+            }
+            None => {}
+        }
+        if timed_out && self.error.is_none() && self.servo.phase() == ServoPhase::Running {
+            let device = match &self.link {
+                Link::Session { device, .. } => device.clone(),
+                Link::Signals { .. } => String::new(),
+            };
+            self.fail(EgmError::CommTimeout {
+                device,
+                timeout: self.comm_timeout,
+            });
+        }
+        self.input.convergence_error = self.convergence_error();
+        let out = self.servo.step(&self.input);
+        self.report_servo(&out);
+        self.cmd = out.commanded;
+        self.fb = out.feedback;
+        if let Some(p) = self.cartesian(&out.feedback) {
+            self.fb_pose = p;
+        }
+        if let Some(p) = self.cartesian(&out.commanded) {
+            self.planned_pose = p;
+        }
+        let sent = self.transmit(now, &out);
+        if let Some((n, reference)) = sample {
+            let row = self.row(now, n, &out);
+            self.log.push(LogRow {
+                recv_time: Some(now),
+                reference: Some(reference),
+                ..row
+            });
+        }
+        let mut finished = None;
+        if let Some(cause) = out.finished {
+            let result = match (self.error.take(), cause) {
+                (Some(e), _) => Err(e),
+                (None, EndCause::Converged) => Ok(EgmEnd::Converged),
+                (None, EndCause::Stopped) => Ok(EgmEnd::Stopped),
+                (None, EndCause::Halted) => Ok(EgmEnd::Halted),
+            };
+            self.finish(result);
+            finished = self.outcome.clone();
+        }
+        EgmTick {
+            joints_cmd: out.commanded,
+            feedback: out.feedback,
+            converged: out.convergence_met,
+            phase: out.phase,
+            mci_state: self.mci,
+            utilization: out.utilization,
+            speed_limited: out.speed_limited,
+            sent: sent || sample.is_some(),
+            events: self.events.len(),
+            finished,
+        }
+    }
+
+    /// Step 1: what arrived, and whether the comm time-out expired.
+    fn receive(&mut self, now: Duration) -> (Option<Incoming>, bool) {
+        let half = self.tick_period / 2;
+        match &mut self.link {
+            Link::Session { session, peer, .. } => {
+                if peer.receive(now, session, &mut self.events) {
+                    self.awaiting = false;
+                }
+                session.handle_timeout(now);
+                forward_events(session, &mut self.events);
+                let timed_out = session.comm_timed_out();
+                (session.poll_reference().map(Incoming::Sensor), timed_out)
+            }
+            Link::Signals {
+                source,
+                next_sample,
+                samples,
+            } => {
+                if now.saturating_add(half) < *next_sample {
+                    return (None, false);
+                }
+                *next_sample = next_sample.saturating_add(self.sample_period);
+                if *next_sample <= now {
+                    *next_sample = now.saturating_add(self.sample_period);
+                }
+                let n = *samples;
+                *samples = samples.wrapping_add(1);
+                (Some(Incoming::Signals(*source, n)), false)
+            }
+        }
+    }
+
+    /// A reply that arrives while the run is ending: logged, not used.
+    fn log_reply(&mut self, r: &SensorReference) {
+        let logged = match &r.target {
+            Target::Joint(j) => Some(j.joints),
+            Target::Pose(p) => Some(pose6(&p.pose)),
+            Target::PathCorr(_) => None,
+        };
+        if let Some(row) = &mut self.pending {
+            row.recv_time = Some(r.received_at);
+            row.reference = logged;
+        }
+    }
+
+    /// Step 2 for a sensor message.
+    fn apply_sensor(&mut self, r: &SensorReference, current: &Joints) {
+        let logged = match &r.target {
+            Target::Joint(j) => {
+                self.input.position = j.joints;
+                self.input.speed = j.speed;
+                self.have_reference = true;
+                Some(j.joints)
+            }
+            Target::Pose(p) => {
+                self.apply_pose(&p.pose.to_robot(), Some(&p.speed), current);
+                Some(pose6(&p.pose))
+            }
+            Target::PathCorr(_) => None,
+        };
+        if let (Some(di), Some(v)) = (self.di_from_sensor, r.rapid.and_then(|d| d.dig_val))
+            && let Err(e) = self.signals.set(di, if v { 1.0 } else { 0.0 })
+        {
+            self.events.push(EgmEvent::new(
+                EventKind::SignalSource,
+                format!("\\DIFromSensor: {e}"),
+            ));
+        }
+        if let Some(row) = &mut self.pending {
+            row.recv_time = Some(r.received_at);
+            row.reference = logged;
+        }
+    }
+
+    /// Step 2 in pose mode: sensor pose → ordered TCP → joints (supervised) and the speed
+    /// reference.
+    fn apply_pose(&mut self, sensor_pose: &Pose, speed: Option<&[f64; 6]>, current: &Joints) {
+        let Some(g) = &self.guidance else {
+            return;
+        };
+        let target = g
+            .target_tcp_world(sensor_pose)
+            .and_then(|tcp| g.joints_for_tcp(&tcp, current).map(|q| (tcp, q)));
+        let (tcp, q) = match target {
+            Ok(t) => t,
+            Err(e) => {
+                self.fail(EgmError::Supervision(e));
+                return;
+            }
+        };
+        let joint_speed = match speed {
+            Some(s) if s.iter().any(|v| *v != 0.0) => match g.joint_speed_ref(current, s) {
+                Ok(sr) => {
+                    if let Some(limit) = sr.limit
+                        && !self.speed_ref_reported
+                    {
+                        self.speed_ref_reported = true;
+                        self.events.push(EgmEvent::new(
+                            EventKind::SpeedRefLimited,
+                            format!("the Cartesian speed reference was limited: {limit:?}"),
+                        ));
+                    }
+                    sr.joints
+                }
+                Err(_) => [0.0; ROBOT_AXES],
+            },
+            _ => [0.0; ROBOT_AXES],
+        };
+        self.input.position = q;
+        self.input.speed = joint_speed;
+        self.ordered = Some(tcp);
+        self.have_reference = true;
+    }
+
+    /// Step 2 for signals (applied only while `apply`); returns the logged reference.
+    fn read_signals(
+        &mut self,
+        src: &SignalSource,
+        current: &Joints,
+        apply: bool,
+    ) -> Option<[f64; 6]> {
+        match self.mode {
+            EgmMode::Pose => {
+                let start = *self.guidance.as_ref()?.start_sensor_pose();
+                match src.sensor_pose(&self.signals, &start) {
+                    Ok(s) => {
+                        if apply {
+                            self.apply_pose(&s, None, current);
+                        }
+                        Some(pose6(&WirePose::from(&s)))
+                    }
+                    Err(e) => {
+                        self.fail(EgmError::Signal(e));
+                        None
+                    }
+                }
+            }
+            _ => {
+                match src.joint_reference(&self.signals, &self.start) {
+                    Ok(q) if !apply => Some(q),
+                    Ok(q) => {
+                        match self.robot.check_limits(&q) {
+                            Ok(()) => {
+                                self.input.position = q;
+                                self.input.speed = [0.0; ROBOT_AXES];
+                                self.have_reference = true;
+                                self.out_of_bounds = false;
+                            }
+                            Err(e) if !self.out_of_bounds => {
+                                self.out_of_bounds = true;
+                                self.events.push(EgmEvent::new(
+                                EventKind::OutOfBounds,
+                                format!("signal joint reference refused, the previous one stays: {e}"),
+                            ));
+                            }
+                            Err(_) => {}
+                        }
+                        Some(q)
+                    }
+                    Err(e) => {
+                        self.fail(EgmError::Signal(e));
+                        None
+                    }
+                }
+            }
+        }
+    }
+
+    /// The convergence error to give the servo: unmet before the first reference; the
+    /// Cartesian error in the correction frame in pose mode; the servo's own joint error
+    /// otherwise.
+    fn convergence_error(&self) -> Option<[f64; ROBOT_AXES]> {
+        if !self.have_reference {
+            return Some([f64::NAN; ROBOT_AXES]);
+        }
+        match (&self.guidance, &self.ordered) {
+            (Some(g), Some(ordered)) => Some(
+                g.convergence_errors(ordered, &self.fb)
+                    .unwrap_or([f64::NAN; ROBOT_AXES]),
+            ),
+            (Some(_), None) => Some([f64::NAN; ROBOT_AXES]),
+            _ => None,
+        }
+    }
+
+    fn report_servo(&mut self, out: &ServoOutput) {
+        let params = self.servo.params();
+        if out.speed_limit_began {
+            self.events.push(speed_limit_event(params, out));
+        }
+        if out.clamp_began {
+            self.events.push(pos_clamp_event(params, out));
+        }
+        if out.limit_began {
+            self.events.push(axis_limit_event(params, out));
+        }
+    }
+
+    /// Step 4: the `EgmRobot` when due. Returns whether one went out.
+    fn transmit(&mut self, now: Duration, out: &ServoOutput) -> bool {
+        let feedback = self.robot_feedback(now, out);
+        let row = self.row(now, 0, out);
+        let Link::Session {
+            session, peer, buf, ..
+        } = &mut self.link
+        else {
+            return false;
+        };
+        if !session.poll_transmit_into(now, &feedback, buf) {
+            forward_events(session, &mut self.events);
+            return false;
+        }
+        let seqno = session.next_seqno().wrapping_sub(1);
+        if let Some(e) = peer.send(now, buf, session) {
+            self.events.push(e);
+        }
+        forward_events(session, &mut self.events);
+        self.awaiting = peer.transport().is_some();
+        if let Some(done) = self.pending.take() {
+            self.log.push(done);
+        }
+        self.pending = Some(LogRow { seqno, ..row });
+        true
+    }
+
+    /// The feedback of this tick.
+    fn robot_feedback(&self, now: Duration, out: &ServoOutput) -> RobotFeedback {
+        let rapid_to_sensor = self.do_to_sensor.and_then(|id| {
+            self.signals
+                .value(id)
+                .map(|v| RapidData::new(Some(v != 0.0), &[]))
+        });
+        RobotFeedback {
+            joints: out.feedback,
+            external: ExternalAxes::NONE,
+            pose: self.fb_pose,
+            time: now,
+            planned_joints: out.commanded,
+            planned_external: ExternalAxes::NONE,
+            planned_pose: self.planned_pose,
+            planned_time: now.saturating_add(self.servo_delay),
+            motor_state: MotorState::On,
+            exec_state: self.exec,
+            mci_state: self.mci,
+            convergence_met: out.convergence_met,
+            utilization: out.utilization,
+            move_index: None,
+            rapid_to_sensor,
+        }
+    }
+
+    /// A log row for this tick without reply data.
+    fn row(&self, now: Duration, seqno: u32, out: &ServoOutput) -> LogRow {
+        let (kind, feedback) = match self.mode {
+            EgmMode::Pose => (LogKind::Pose, pose6(&self.fb_pose)),
+            _ => (LogKind::Joint, out.feedback),
+        };
+        LogRow {
+            kind,
+            send_time: now,
+            recv_time: None,
+            seqno,
+            reference: None,
+            feedback,
+            state: phase_name(out.phase),
+            utilization: out.utilization,
+        }
+    }
+
+    /// `feedBack.cartesian` / `planned.cartesian` at `q`.
+    fn cartesian(&self, q: &Joints) -> Option<WirePose> {
+        let r = match &self.guidance {
+            Some(g) => g.feedback_cartesian(q, FeedbackMode::Pose),
+            None => feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj),
+        };
+        r.ok().map(|(pos, orient)| WirePose { pos, orient })
+    }
+
+    /// Ends the run with `err` after ramping the EGM speed out (first error wins).
+    fn fail(&mut self, err: EgmError) {
+        if self.error.is_some()
+            || !matches!(
+                self.servo.phase(),
+                ServoPhase::Running | ServoPhase::Holding
+            )
+        {
+            return;
+        }
+        self.error = Some(err);
+        self.mci = MciState::Error;
+        self.servo.halt(self.halt_ramp);
+    }
+
+    fn finish(&mut self, result: Result<EgmEnd, EgmError>) {
+        if let Link::Session { session, .. } = &mut self.link {
+            session.stop();
+        }
+        if let Some(done) = self.pending.take() {
+            self.log.push(done);
+        }
+        self.awaiting = false;
+        self.outcome = Some(result);
+    }
+
+    fn idle_tick(&self, finished: Option<Result<EgmEnd, EgmError>>) -> EgmTick {
+        EgmTick {
+            joints_cmd: self.cmd,
+            feedback: self.cmd,
+            converged: false,
+            phase: ServoPhase::Done,
+            mci_state: self.mci,
+            utilization: 0.0,
+            speed_limited: false,
+            sent: false,
+            events: self.events.len(),
+            finished,
+        }
+    }
+}
+
+/// The session's events, except 41822 (the run's `CommTimeout` error carries it).
+fn forward_events(session: &mut EgmSession, events: &mut EventQueue) {
+    while let Some(e) = session.poll_event() {
+        if e.number != EventKind::CommTimeout.number() {
+            events.push(e);
+        }
+    }
+}
+
+fn new_session(
+    plan: &RunPlan,
+    ctx: &DriverContext,
+    remote: std::net::SocketAddr,
+    filter: SourceFilter,
+) -> Result<EgmSession, EgmError> {
+    let opts = &ctx.options;
+    let mut config = EgmConfig::new(plan.mode, remote);
+    config.source_filter = filter;
+    config.sample_period = plan.sample_period;
+    config.comm_timeout = Some(plan.comm_timeout);
+    config.queue = opts.queue;
+    config.encode = opts.encode;
+    config.event_repeat = opts.event_repeat;
+    config.limits = robot_limits(&ctx.robot);
+    EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+        instruction: plan.instruction,
+        detail: e.to_string(),
+    })
+}
+
+/// Reference bounds narrowed to the robot's axis ranges.
+pub(crate) fn robot_limits(robot: &Robot) -> ReferenceLimits {
+    let mut limits = ReferenceLimits::default();
+    for ((lo, hi), l) in limits
+        .joint_min
+        .iter_mut()
+        .zip(limits.joint_max.iter_mut())
+        .zip(&robot.model().joint_limits)
+    {
+        *lo = l.min;
+        *hi = l.max;
+    }
+    limits
+}
+
+/// A wire pose as x, y, z (mm) and rx, ry, rz (degrees, Euler ZYX).
+fn pose6(p: &WirePose) -> [f64; 6] {
+    let [x, y, z] = p.pos;
+    let [rx, ry, rz] = euler_zyx_from_quaternion(p.orient);
+    [x, y, z, rx, ry, rz]
+}
+
+/// The log's `state` text of a phase.
+pub(crate) fn phase_name(p: ServoPhase) -> &'static str {
+    match p {
+        ServoPhase::Running => "running",
+        ServoPhase::Holding => "holding",
+        ServoPhase::RampingDown => "ramping_down",
+        ServoPhase::Halting => "halting",
+        ServoPhase::Done => "done",
+    }
+}
+
+#[cfg(test)]
+mod tests;
