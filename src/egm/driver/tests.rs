@@ -151,11 +151,8 @@ fn start_checks() {
 fn helpers() {
     let limits = robot_limits(&Robot::default());
     let model = Robot::default().model().joint_limits;
-    for i in 0..6 {
-        assert_eq!(
-            (limits.joint_min[i], limits.joint_max[i]),
-            (model[i].min, model[i].max)
-        );
+    for (i, l) in model.iter().enumerate() {
+        assert_eq!((limits.joint_min[i], limits.joint_max[i]), (l.min, l.max));
     }
     assert_eq!(phase_name(ServoPhase::RampingDown), "ramping_down");
     let mut q = EventQueue::with_capacity();
