@@ -598,13 +598,18 @@ mod udp {
                 let origin = Instant::now();
                 let mut buf = vec![0u8; 2048];
                 let mut seen = Vec::new();
-                while !stop2.load(Ordering::Relaxed) && origin.elapsed() < Duration::from_secs(30) {
+                // Until stopped and nothing more arrives for one read time-out (so the
+                // last message is always seen), or 30 s.
+                while origin.elapsed() < Duration::from_secs(30) {
                     let Ok((len, src)) = socket.recv_from(&mut buf) else {
+                        if stop2.load(Ordering::Relaxed) {
+                            break;
+                        }
                         continue;
                     };
                     seen.push(EgmRobot::decode(&buf[..len]).unwrap());
                     if let Ok(reply) = sensor.handle_datagram(origin.elapsed(), &buf[..len]) {
-                        socket.send_to(&reply, src).unwrap();
+                        let _ = socket.send_to(&reply, src);
                     }
                 }
                 (sensor.stats().clone(), seen)

@@ -68,19 +68,19 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::egm::convert::{EncodeOptions, ReferenceLimits, euler_zyx_from_quaternion};
+use crate::egm::convert::{ReferenceLimits, euler_zyx_from_quaternion};
 use crate::egm::event::{EgmEvent, EventKind};
 use crate::egm::guidance::{
     FeedbackMode, GuidanceError, PoseGuidance, SignalSource, feedback_in_wobj,
 };
-use crate::egm::log::{DEFAULT_LOG_CAPACITY, LogKind, LogRing, LogRow};
+use crate::egm::log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::{EgmError, RunPlan};
 use crate::egm::sensor::SensorStats;
 use crate::egm::servo::{
-    DEFAULT_RAMP_TIME, DEFAULT_SERVO_DELAY, EgmServo, EndCause, ServoInput, ServoOutput,
-    ServoPhase, StopMode, axis_limit_event, pos_clamp_event, speed_limit_event,
+    DEFAULT_RAMP_TIME, EgmServo, EndCause, ServoInput, ServoOutput, ServoPhase, StopMode,
+    axis_limit_event, pos_clamp_event, speed_limit_event,
 };
-use crate::egm::session::{EgmConfig, EgmSession, EgmStats, Outcome, QueuePolicy, SourceFilter};
+use crate::egm::session::{EgmConfig, EgmSession, EgmStats, Outcome, SourceFilter};
 use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
     RapidExecState, RobotFeedback, SensorReference, Target,
@@ -88,64 +88,17 @@ use crate::egm::types::{
 use crate::io::{SignalId, SignalTable};
 use crate::robot::{Pose, Robot, ToolData, WobjData};
 
+mod feedback;
+mod options;
+mod reference;
 mod source;
 mod stream;
 
+pub(crate) use options::check_options;
+pub use options::{DEFAULT_REPLY_TIMEOUT, DriverContext, DriverOptions, MAX_EVENTS};
 pub use source::EgmSource;
 use source::{BUILTIN_ADDR, Peer};
 pub use stream::{EgmStream, StreamTick};
-
-/// Most events waiting in a driver; further ones are counted and lost.
-pub const MAX_EVENTS: usize = 64;
-/// Default lockstep wait for one reply (real time).
-pub const DEFAULT_REPLY_TIMEOUT: Duration = Duration::from_millis(100);
-
-/// rapidvc options of every EGM run and stream (not RAPID arguments).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DriverOptions {
-    /// The motion tick the driver is called at (4 ms).
-    pub tick: Duration,
-    /// Delay from commanded to measured position (12 ms; see `egm::servo`).
-    pub servo_delay: Duration,
-    /// How received references are consumed (newest per cycle).
-    pub queue: QueuePolicy,
-    /// Which senders a UdpUc session accepts (the device's remote IP).
-    pub source_filter: SourceFilter,
-    /// Extra `EgmRobot` content.
-    pub encode: EncodeOptions,
-    /// Repeated session events are reported at most this often.
-    pub event_repeat: Duration,
-    /// Lockstep: how long [`EgmDriver::wait_reply`] waits for one reply (real time).
-    pub reply_timeout: Duration,
-    /// Rows kept in the log ring (0: no log).
-    pub log_capacity: usize,
-}
-
-impl Default for DriverOptions {
-    fn default() -> Self {
-        DriverOptions {
-            tick: Duration::from_millis(4),
-            servo_delay: DEFAULT_SERVO_DELAY,
-            queue: QueuePolicy::Newest,
-            source_filter: SourceFilter::RemoteIp,
-            encode: EncodeOptions::default(),
-            event_repeat: Duration::from_secs(1),
-            reply_timeout: DEFAULT_REPLY_TIMEOUT,
-            log_capacity: DEFAULT_LOG_CAPACITY,
-        }
-    }
-}
-
-/// What every run and stream of a controller shares.
-#[derive(Clone, Debug)]
-pub struct DriverContext {
-    /// The robot (model, base).
-    pub robot: Robot,
-    /// The I/O signals (signal sources, `\DOToSensor`, `\DIFromSensor`).
-    pub signals: Arc<SignalTable>,
-    /// rapidvc options.
-    pub options: DriverOptions,
-}
 
 /// How a run ended without error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -305,12 +258,7 @@ impl EgmDriver {
     ) -> Result<EgmDriver, EgmError> {
         let instruction = plan.instruction;
         let opts = &ctx.options;
-        if opts.tick.is_zero() {
-            return Err(EgmError::BadSetup {
-                instruction,
-                detail: "the motion tick must be longer than zero".to_string(),
-            });
-        }
+        check_options(instruction, opts)?;
         if !current.iter().all(|v| v.is_finite()) {
             return Err(EgmError::Supervision(GuidanceError::NotFinite {
                 what: "start position",
@@ -563,7 +511,8 @@ impl EgmDriver {
         let Some(transport) = peer.transport() else {
             return false;
         };
-        let deadline = Instant::now() + timeout;
+        let start = Instant::now();
+        let deadline = start.checked_add(timeout).unwrap_or(start);
         loop {
             let left = deadline.saturating_duration_since(Instant::now());
             if left.is_zero() {
@@ -694,252 +643,6 @@ impl EgmDriver {
                 (Some(Incoming::Signals(*source, n)), false)
             }
         }
-    }
-
-    /// A reply that arrives while the run is ending: logged, not used.
-    fn log_reply(&mut self, r: &SensorReference) {
-        let logged = match &r.target {
-            Target::Joint(j) => Some(j.joints),
-            Target::Pose(p) => Some(pose6(&p.pose)),
-            Target::PathCorr(_) => None,
-        };
-        if let Some(row) = &mut self.pending {
-            row.recv_time = Some(r.received_at);
-            row.reference = logged;
-        }
-    }
-
-    /// Step 2 for a sensor message.
-    fn apply_sensor(&mut self, r: &SensorReference, current: &Joints) {
-        let logged = match &r.target {
-            Target::Joint(j) => {
-                self.input.position = j.joints;
-                self.input.speed = j.speed;
-                self.have_reference = true;
-                Some(j.joints)
-            }
-            Target::Pose(p) => {
-                self.apply_pose(&p.pose.to_robot(), Some(&p.speed), current);
-                Some(pose6(&p.pose))
-            }
-            Target::PathCorr(_) => None,
-        };
-        if let (Some(di), Some(v)) = (self.di_from_sensor, r.rapid.and_then(|d| d.dig_val))
-            && let Err(e) = self.signals.set(di, if v { 1.0 } else { 0.0 })
-        {
-            self.events.push(EgmEvent::new(
-                EventKind::SignalSource,
-                format!("\\DIFromSensor: {e}"),
-            ));
-        }
-        if let Some(row) = &mut self.pending {
-            row.recv_time = Some(r.received_at);
-            row.reference = logged;
-        }
-    }
-
-    /// Step 2 in pose mode: sensor pose → ordered TCP → joints (supervised) and the speed
-    /// reference.
-    fn apply_pose(&mut self, sensor_pose: &Pose, speed: Option<&[f64; 6]>, current: &Joints) {
-        let Some(g) = &self.guidance else {
-            return;
-        };
-        let target = g
-            .target_tcp_world(sensor_pose)
-            .and_then(|tcp| g.joints_for_tcp(&tcp, current).map(|q| (tcp, q)));
-        let (tcp, q) = match target {
-            Ok(t) => t,
-            Err(e) => {
-                self.fail(EgmError::Supervision(e));
-                return;
-            }
-        };
-        let joint_speed = match speed {
-            Some(s) if s.iter().any(|v| *v != 0.0) => match g.joint_speed_ref(current, s) {
-                Ok(sr) => {
-                    if let Some(limit) = sr.limit
-                        && !self.speed_ref_reported
-                    {
-                        self.speed_ref_reported = true;
-                        self.events.push(EgmEvent::new(
-                            EventKind::SpeedRefLimited,
-                            format!("the Cartesian speed reference was limited: {limit:?}"),
-                        ));
-                    }
-                    sr.joints
-                }
-                Err(_) => [0.0; ROBOT_AXES],
-            },
-            _ => [0.0; ROBOT_AXES],
-        };
-        self.input.position = q;
-        self.input.speed = joint_speed;
-        self.ordered = Some(tcp);
-        self.have_reference = true;
-    }
-
-    /// Step 2 for signals (applied only while `apply`); returns the logged reference.
-    fn read_signals(
-        &mut self,
-        src: &SignalSource,
-        current: &Joints,
-        apply: bool,
-    ) -> Option<[f64; 6]> {
-        match self.mode {
-            EgmMode::Pose => {
-                let start = *self.guidance.as_ref()?.start_sensor_pose();
-                match src.sensor_pose(&self.signals, &start) {
-                    Ok(s) => {
-                        if apply {
-                            self.apply_pose(&s, None, current);
-                        }
-                        Some(pose6(&WirePose::from(&s)))
-                    }
-                    Err(e) => {
-                        self.fail(EgmError::Signal(e));
-                        None
-                    }
-                }
-            }
-            _ => {
-                match src.joint_reference(&self.signals, &self.start) {
-                    Ok(q) if !apply => Some(q),
-                    Ok(q) => {
-                        match self.robot.check_limits(&q) {
-                            Ok(()) => {
-                                self.input.position = q;
-                                self.input.speed = [0.0; ROBOT_AXES];
-                                self.have_reference = true;
-                                self.out_of_bounds = false;
-                            }
-                            Err(e) if !self.out_of_bounds => {
-                                self.out_of_bounds = true;
-                                self.events.push(EgmEvent::new(
-                                EventKind::OutOfBounds,
-                                format!("signal joint reference refused, the previous one stays: {e}"),
-                            ));
-                            }
-                            Err(_) => {}
-                        }
-                        Some(q)
-                    }
-                    Err(e) => {
-                        self.fail(EgmError::Signal(e));
-                        None
-                    }
-                }
-            }
-        }
-    }
-
-    /// The convergence error to give the servo: unmet before the first reference; the
-    /// Cartesian error in the correction frame in pose mode; the servo's own joint error
-    /// otherwise.
-    fn convergence_error(&self) -> Option<[f64; ROBOT_AXES]> {
-        if !self.have_reference {
-            return Some([f64::NAN; ROBOT_AXES]);
-        }
-        match (&self.guidance, &self.ordered) {
-            (Some(g), Some(ordered)) => Some(
-                g.convergence_errors(ordered, &self.fb)
-                    .unwrap_or([f64::NAN; ROBOT_AXES]),
-            ),
-            (Some(_), None) => Some([f64::NAN; ROBOT_AXES]),
-            _ => None,
-        }
-    }
-
-    fn report_servo(&mut self, out: &ServoOutput) {
-        let params = self.servo.params();
-        if out.speed_limit_began {
-            self.events.push(speed_limit_event(params, out));
-        }
-        if out.clamp_began {
-            self.events.push(pos_clamp_event(params, out));
-        }
-        if out.limit_began {
-            self.events.push(axis_limit_event(params, out));
-        }
-    }
-
-    /// Step 4: the `EgmRobot` when due. Returns whether one went out.
-    fn transmit(&mut self, now: Duration, out: &ServoOutput) -> bool {
-        let feedback = self.robot_feedback(now, out);
-        let row = self.row(now, 0, out);
-        let Link::Session {
-            session, peer, buf, ..
-        } = &mut self.link
-        else {
-            return false;
-        };
-        if !session.poll_transmit_into(now, &feedback, buf) {
-            forward_events(session, &mut self.events);
-            return false;
-        }
-        let seqno = session.next_seqno().wrapping_sub(1);
-        if let Some(e) = peer.send(now, buf, session) {
-            self.events.push(e);
-        }
-        forward_events(session, &mut self.events);
-        self.awaiting = peer.transport().is_some();
-        if let Some(done) = self.pending.take() {
-            self.log.push(done);
-        }
-        self.pending = Some(LogRow { seqno, ..row });
-        true
-    }
-
-    /// The feedback of this tick.
-    fn robot_feedback(&self, now: Duration, out: &ServoOutput) -> RobotFeedback {
-        let rapid_to_sensor = self.do_to_sensor.and_then(|id| {
-            self.signals
-                .value(id)
-                .map(|v| RapidData::new(Some(v != 0.0), &[]))
-        });
-        RobotFeedback {
-            joints: out.feedback,
-            external: ExternalAxes::NONE,
-            pose: self.fb_pose,
-            time: now,
-            planned_joints: out.commanded,
-            planned_external: ExternalAxes::NONE,
-            planned_pose: self.planned_pose,
-            planned_time: now.saturating_add(self.servo_delay),
-            motor_state: MotorState::On,
-            exec_state: self.exec,
-            mci_state: self.mci,
-            convergence_met: out.convergence_met,
-            utilization: out.utilization,
-            move_index: None,
-            rapid_to_sensor,
-        }
-    }
-
-    /// A log row for this tick without reply data.
-    fn row(&self, now: Duration, seqno: u32, out: &ServoOutput) -> LogRow {
-        let (kind, feedback) = match self.mode {
-            EgmMode::Pose => (LogKind::Pose, pose6(&self.fb_pose)),
-            _ => (LogKind::Joint, out.feedback),
-        };
-        LogRow {
-            kind,
-            send_time: now,
-            recv_time: None,
-            seqno,
-            reference: None,
-            feedback,
-            state: phase_name(out.phase),
-            utilization: out.utilization,
-        }
-    }
-
-    /// `feedBack.cartesian` / `planned.cartesian` at `q`.
-    fn cartesian(&self, q: &Joints) -> Option<WirePose> {
-        let r = match &self.guidance {
-            Some(g) => g.feedback_cartesian(q, FeedbackMode::Pose),
-            None => feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj),
-        };
-        r.ok().map(|(pos, orient)| WirePose { pos, orient })
     }
 
     /// Ends the run with `err` after ramping the EGM speed out (first error wins).

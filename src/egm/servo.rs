@@ -55,6 +55,8 @@ pub const DEFAULT_MAX_POS_DEVIATION: f64 = 1000.0;
 pub const DEFAULT_SERVO_DELAY: Duration = Duration::from_millis(12);
 /// `\CondTime` default.
 pub const DEFAULT_COND_TIME: Duration = Duration::from_secs(1);
+/// Shortest step (keeps the servo-delay line small).
+pub const MIN_PERIOD: Duration = Duration::from_micros(100);
 /// Longest servo delay.
 pub const MAX_SERVO_DELAY: Duration = Duration::from_secs(1);
 /// Below this EGM speed (degrees/s) a HOLD stop counts as finished.
@@ -682,7 +684,12 @@ fn validate(p: &ServoParams) -> Result<(), ServoError> {
         }
     };
     let period = p.period.as_secs_f64();
-    check("period", period, period > 0.0, "(0, ∞) s")?;
+    check(
+        "period",
+        period,
+        p.period >= MIN_PERIOD,
+        "[0.1 ms, ∞) (a motion tick)",
+    )?;
     check("ext_motion_Kp", p.kp, p.kp >= 0.0, "[0, ∞)")?;
     check(
         "\\PosCorrGain",

@@ -16,7 +16,7 @@ use crate::egm::types::{
 use crate::robot::{Robot, ToolData, WobjData};
 
 use super::source::{BUILTIN_ADDR, Peer};
-use super::{DriverContext, EgmSource, EventQueue, forward_events, robot_limits};
+use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, robot_limits};
 
 /// The result of one stream tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +59,7 @@ impl EgmStream {
         current: &Joints,
     ) -> Result<EgmStream, EgmError> {
         let instruction = "EGMStreamStart";
+        check_options(instruction, &ctx.options)?;
         let mut pattern = None;
         let (device, peer, remote, filter) = match source {
             EgmSource::Udp { device, transport } => {
