@@ -835,3 +835,209 @@ fn mode_mismatch_and_the_fifth_identity() {
     assert_eq!(err.event().number, 90120);
     assert!(err.to_string().contains("at most 4"), "{err}");
 }
+
+mod path_correction {
+    use super::*;
+    use rapidvc::egm::driver::{CorrectionInput, CorrectionLink};
+    use rapidvc::egm::pathcorr::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
+    use rapidvc::egm::registry::{ActMove, SetupLtapp, TrackerKind};
+    use rapidvc::robot::WobjData;
+
+    /// A registry whose MOC.cfg defines the manual's Level 2 profile "pathCorr".
+    fn registry_pathcorr(overrides: &[String]) -> EgmRegistry {
+        let text = "MOC:CFG_1.0:6:0::\n#\nEXT_MOTION_DATA:\n\n      -name \"pathCorr\" -ext_motion_level 2\n";
+        let mut sources = rapidvc::source::SourceMap::new();
+        let mut diags = rapidvc::diag::Diagnostics::new();
+        let id = sources.add("MOC.cfg".to_string(), text);
+        let file = rapidvc::config::cfg::parse(id, text, &mut diags).unwrap();
+        let moc = rapidvc::config::moc::read(&file, &mut diags);
+        let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();
+        let devices = DeviceTable::new(None, &overrides).unwrap();
+        EgmRegistry::new(RegistryConfig::new(moc, devices))
+    }
+
+    fn act_move(reg: &mut EgmRegistry, id: rapidvc::egm::EgmId) {
+        reg.act_move(
+            id,
+            &ActMove {
+                sensor_frame: t_fronius_cmt().tframe,
+                sample_rate: Some(48.0),
+            },
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn udpuc_builtin_corrections_every_48_ms_drive_the_path_corrector() {
+        let mut reg = registry_pathcorr(&["UCdevice=builtin:pathcorr:y=2,z=-1".into()]);
+        let id = reg.get_id("egmId1").unwrap();
+        let mut setup = uc("UCdevice", EgmMode::PathCorr);
+        setup.profile = "pathCorr".into();
+        setup.tracker = Some(TrackerKind::Aptr);
+        reg.setup_uc(id, &setup).unwrap();
+        act_move(&mut reg, id);
+        let plan = reg.move_start(id, "EGMMoveL").unwrap();
+        assert_eq!(reg.state(id), (EgmState::Running, CorrState::Running));
+        let ctx = ctx(Arc::new(SignalTable::with_builtins()));
+        let source = EgmSource::open(&plan.source).unwrap();
+        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut corrector = PathCorrector::new(PathCorrConfig::aptr()).unwrap();
+        corrector.start(0.0, 0.0);
+        let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
+        let mut arrivals = Vec::new();
+        let mut offset = Default::default();
+        for k in 0..500u32 {
+            let now = TICK * k;
+            let input = CorrectionInput {
+                commanded: START,
+                tool: &tool,
+                wobj: &wobj,
+                tcp_s: f64::from(k) * 0.04,
+                look_ahead: 0.0,
+            };
+            let t = link.tick(now, &input);
+            assert!(t.failed.is_none());
+            if let Some(c) = t.correction {
+                arrivals.push(now);
+                assert_eq!(c.pos, [0.0, 2.0, -1.0]);
+                corrector
+                    .measurement(now.as_secs_f64(), c.pos, c.age_s())
+                    .unwrap();
+            }
+            offset = corrector.step(now.as_secs_f64(), input.tcp_s);
+        }
+        // The built-in sensor answers at once; the reply is used on the next tick.
+        assert_eq!(arrivals[0], TICK);
+        assert!(
+            arrivals
+                .windows(2)
+                .all(|w| w[1] - w[0] == Duration::from_millis(48))
+        );
+        assert!(
+            (offset.y - 2.0).abs() < 1e-9 && (offset.z + 1.0).abs() < 1e-9,
+            "{offset:?}"
+        );
+        let st = link.session_stats().unwrap();
+        assert_eq!(st.sent, 42, "2 s at 48 ms");
+        link.finish();
+        let rows: Vec<_> = std::iter::from_fn(|| link.pop_log()).collect();
+        assert_eq!(rows.len(), 42);
+        assert_eq!(rows[0].reference, Some([0.0, 2.0, -1.0, 1.0, 0.0, 0.0]));
+        reg.move_finished(id, true);
+        assert_eq!(reg.state(id), (EgmState::Connected, CorrState::Stopped));
+    }
+
+    #[test]
+    fn a_simulated_look_ahead_seam_is_sensed_ahead_of_the_tcp() {
+        let mut reg = registry_pathcorr(&[]);
+        let id = reg.get_id("egmId1").unwrap();
+        reg.setup_ltapp(
+            id,
+            &SetupLtapp {
+                mecunit: "ROB_1".into(),
+                profile: "pathCorr".into(),
+                device: "OptSim".into(),
+                joint_type: 1.0,
+                tracker: TrackerKind::Latr,
+            },
+        )
+        .unwrap();
+        act_move(&mut reg, id);
+        let plan = reg.move_start(id, "EGMMoveL").unwrap();
+        let ctx = ctx(Arc::new(SignalTable::with_builtins()));
+        let source = EgmSource::open(&plan.source).unwrap();
+        assert!(
+            EgmDriver::start(
+                Duration::ZERO,
+                &ctx,
+                &{
+                    let mut p = reg_plan_for_guidance();
+                    p.source = plan.source.clone();
+                    p
+                },
+                EgmSource::open(&plan.source).unwrap(),
+                &START
+            )
+            .is_err(),
+            "a seam cannot guide"
+        );
+        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let seam: SeamProfile = "sine:y=2,z=0.5,period=200".parse().unwrap();
+        let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
+        let mut got = 0;
+        for k in 0..120u32 {
+            let tcp_s = f64::from(k) * 0.5;
+            let input = CorrectionInput {
+                commanded: START,
+                tool: &tool,
+                wobj: &wobj,
+                tcp_s,
+                look_ahead: 30.0,
+            };
+            if let Some(c) = link.tick(TICK * k, &input).correction {
+                let want = seam.sensed_at(Tracker::Latr { look_ahead: 30.0 }, tcp_s);
+                assert_eq!(c.pos, [0.0, want.y, want.z]);
+                assert_eq!(c.received_at, TICK * k);
+                got += 1;
+            }
+        }
+        assert_eq!(got, 10, "every 48 ms for 480 ms");
+        assert!(link.session_stats().is_none());
+    }
+
+    /// Any joint-mode plan (only its source is swapped in).
+    fn reg_plan_for_guidance() -> rapidvc::egm::registry::RunPlan {
+        let mut reg = registry(&[]);
+        let id = reg.get_id("x").unwrap();
+        reg.setup_uc(id, &uc("b", EgmMode::Joint)).unwrap();
+        reg.act_joint(id, &ActJoint::default()).unwrap();
+        reg.run_joint(id, &RunArgs::new(StopMode::Hold), ALL_J)
+            .unwrap()
+    }
+
+    #[test]
+    fn a_silent_path_correction_sensor_fails_with_err_udpuc_comm() {
+        let silent = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let mut reg = registry_pathcorr(&[format!("UCdevice={}", silent.local_addr().unwrap())]);
+        let id = reg.get_id("egmId1").unwrap();
+        let mut setup = uc("UCdevice", EgmMode::PathCorr);
+        setup.profile = "pathCorr".into();
+        setup.tracker = Some(TrackerKind::Latr);
+        setup.comm_timeout = Some(0.5);
+        reg.setup_uc(id, &setup).unwrap();
+        act_move(&mut reg, id);
+        let plan = reg.move_start(id, "EGMMoveC").unwrap();
+        let ctx = ctx(Arc::new(SignalTable::with_builtins()));
+        let source = EgmSource::open(&plan.source).unwrap();
+        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
+        let input = CorrectionInput {
+            commanded: START,
+            tool: &tool,
+            wobj: &wobj,
+            tcp_s: 0.0,
+            look_ahead: 0.0,
+        };
+        let mut failed_at = None;
+        for k in 0..300u32 {
+            let t = link.tick(TICK * k, &input);
+            if let Some(err) = t.failed {
+                assert_eq!(err.rapid_error(), Some("ERR_UDPUC_COMM"));
+                assert_eq!(err.event().number, 41822);
+                assert!(failed_at.is_none(), "reported once");
+                failed_at = Some(k);
+            }
+            if failed_at.is_some() {
+                assert!(!link.awaiting_reply());
+            }
+        }
+        assert_eq!(failed_at, Some(125), "0.5 s");
+        assert_eq!(
+            link.session_stats().unwrap().sent,
+            11,
+            "every 48 ms until then"
+        );
+        reg.move_finished(id, false);
+        assert_eq!(reg.state(id), (EgmState::Connected, CorrState::Error));
+    }
+}

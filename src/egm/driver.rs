@@ -66,7 +66,7 @@
 
 use std::collections::VecDeque;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use crate::egm::convert::{ReferenceLimits, euler_zyx_from_quaternion};
 use crate::egm::event::{EgmEvent, EventKind};
@@ -80,7 +80,7 @@ use crate::egm::servo::{
     DEFAULT_RAMP_TIME, EgmServo, EndCause, ServoInput, ServoOutput, ServoPhase, StopMode,
     axis_limit_event, pos_clamp_event, speed_limit_event,
 };
-use crate::egm::session::{EgmConfig, EgmSession, EgmStats, Outcome, SourceFilter};
+use crate::egm::session::{EgmConfig, EgmSession, EgmStats, SourceFilter};
 use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
     RapidExecState, RobotFeedback, SensorReference, Target,
@@ -88,12 +88,15 @@ use crate::egm::types::{
 use crate::io::{SignalId, SignalTable};
 use crate::robot::{Pose, Robot, ToolData, WobjData};
 
+mod corrections;
+mod delay;
 mod feedback;
 mod options;
 mod reference;
 mod source;
 mod stream;
 
+pub use corrections::{Correction, CorrectionInput, CorrectionLink, CorrectionTick};
 pub(crate) use options::check_options;
 pub use options::{DEFAULT_REPLY_TIMEOUT, DriverContext, DriverOptions, MAX_EVENTS};
 pub use source::EgmSource;
@@ -335,6 +338,12 @@ impl EgmDriver {
                 next_sample: now,
                 samples: 0,
             },
+            EgmSource::Seam { .. } => {
+                return Err(EgmError::Unsupported {
+                    instruction,
+                    what: "position guidance from a simulated LTAPP device (it only corrects paths)",
+                });
+            }
         };
         let halt_ramp =
             Duration::try_from_secs_f64(plan.profile.ramp_time).unwrap_or(DEFAULT_RAMP_TIME);
@@ -508,32 +517,7 @@ impl EgmDriver {
         let Link::Session { session, peer, .. } = &mut self.link else {
             return false;
         };
-        let Some(transport) = peer.transport() else {
-            return false;
-        };
-        let start = Instant::now();
-        let deadline = start.checked_add(timeout).unwrap_or(start);
-        loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            if left.is_zero() {
-                return false;
-            }
-            match transport.recv_timeout(left) {
-                Ok(Some((src, bytes))) => {
-                    if session.handle_datagram(now, src, bytes) == Outcome::Accepted {
-                        return true;
-                    }
-                }
-                Ok(None) => return false,
-                Err(e) => {
-                    self.events.push(EgmEvent::new(
-                        EventKind::SendError,
-                        format!("receiving from the UdpUc device failed: {e}"),
-                    ));
-                    return false;
-                }
-            }
-        }
+        peer.wait_reply(now, timeout, session, &mut self.events)
     }
 
     /// One motion tick at `now`; `current` are the joints commanded last (normally the

@@ -8,13 +8,13 @@
 //! | column | meaning |
 //! |---|---|
 //! | `identity` | the EGM identity's variable name |
-//! | `kind` | `joint`, `pose` or `stream` |
+//! | `kind` | `joint`, `pose`, `stream` or `pathcorr` |
 //! | `send_time_s` | controller time the message was sent (the signals read), s |
 //! | `recv_time_s` | when the reply arrived (empty: no reply before the next message; for signals the read time) |
 //! | `seqno` | `header.seqno` of the message (the sample number for signals) |
-//! | `ref_1` … `ref_6` | the reference of the reply: joints in degrees (`joint`), or the sensor pose x, y, z in mm and rx, ry, rz in degrees, Euler ZYX (`pose`); empty without a reply |
-//! | `fb_1` … `fb_6` | the feedback sent: measured joints in degrees (`joint`, `stream`), or the measured TCP in the correction frame, x, y, z mm and rx, ry, rz degrees ZYX (`pose`) |
-//! | `state` | the run's phase: `running`, `holding`, `ramping_down`, `halting`, `done`, or `streaming` |
+//! | `ref_1` … `ref_6` | the reference of the reply: joints in degrees (`joint`), the sensor pose x, y, z in mm and rx, ry, rz in degrees, Euler ZYX (`pose`), or the correction x, y, z in mm and its age in ms, then two zeros (`pathcorr`); empty without a reply |
+//! | `fb_1` … `fb_6` | the feedback sent: measured joints in degrees (`joint`, `stream`, `pathcorr`), or the measured TCP in the correction frame, x, y, z mm and rx, ry, rz degrees ZYX (`pose`) |
+//! | `state` | the run's phase: `running`, `holding`, `ramping_down`, `halting`, `done`; `streaming`; `correcting` |
 //! | `utilization_pct` | `utilizationRate` sent |
 //!
 //! # Real-time use
@@ -63,6 +63,8 @@ pub enum LogKind {
     Pose,
     /// A position stream.
     Stream,
+    /// Path correction (EGMMoveL/EGMMoveC).
+    PathCorr,
 }
 
 impl LogKind {
@@ -72,6 +74,7 @@ impl LogKind {
             LogKind::Joint => "joint",
             LogKind::Pose => "pose",
             LogKind::Stream => "stream",
+            LogKind::PathCorr => "pathcorr",
         }
     }
 }

@@ -31,7 +31,7 @@ pub struct DriverOptions {
     pub encode: EncodeOptions,
     /// Repeated session events are reported at most this often.
     pub event_repeat: Duration,
-    /// Lockstep: how long [`EgmDriver::wait_reply`] waits for one reply (real time).
+    /// Lockstep: how long [`crate::egm::EgmDriver::wait_reply`] waits for one reply (real time).
     pub reply_timeout: Duration,
     /// Rows kept in the log ring (0: no log).
     pub log_capacity: usize,

@@ -1,11 +1,12 @@
 //! Where a run's or stream's references come from: [`EgmSource`] (opened from a setup's [`SourceSpec`]) and the per-tick message path inside the driver (UDP socket, in-process built-in sensor, or I/O signals).
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use crate::egm::EgmError;
 use crate::egm::event::{EgmEvent, EventKind};
 use crate::egm::guidance::SignalSource;
+use crate::egm::pathcorr::SeamProfile;
 use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};
@@ -45,14 +46,22 @@ pub enum EgmSource {
         /// The signals.
         source: SignalSource,
     },
+    /// A simulated LTAPP seam sensor (path correction only).
+    Seam {
+        /// The device name.
+        device: String,
+        /// `JointType` of EGMSetupLTAPP.
+        joint_type: f64,
+        /// The seam it reports.
+        seam: SeamProfile,
+    },
 }
 
 impl EgmSource {
     /// Opens `spec`: binds a UdpUc device's socket (Local Port Number, or any free port) as
-    /// [`UdpTransport::for_device`] does. A simulated LTAPP device cannot guide a robot.
+    /// [`UdpTransport::for_device`] does.
     ///
-    /// Errors: [`EgmError::DeviceOpen`] (`ERR_UDPUC_COMM`) when the socket cannot be bound;
-    /// [`EgmError::Unsupported`] for an LTAPP device.
+    /// Error: [`EgmError::DeviceOpen`] (`ERR_UDPUC_COMM`) when the socket cannot be bound.
     pub fn open(spec: &SourceSpec) -> Result<EgmSource, EgmError> {
         match spec {
             SourceSpec::Udp {
@@ -80,9 +89,14 @@ impl EgmSource {
                 kind: *kind,
                 source: *source,
             }),
-            SourceSpec::Ltapp { .. } => Err(EgmError::Unsupported {
-                instruction: "EGMRun",
-                what: "position guidance or streaming from a simulated LTAPP device (it only corrects paths)",
+            SourceSpec::Ltapp {
+                device,
+                joint_type,
+                seam,
+            } => Ok(EgmSource::Seam {
+                device: device.clone(),
+                joint_type: *joint_type,
+                seam: *seam,
             }),
         }
     }
@@ -90,7 +104,9 @@ impl EgmSource {
     /// The device name (`None` for signals).
     pub fn device(&self) -> Option<&str> {
         match self {
-            EgmSource::Udp { device, .. } | EgmSource::Builtin { device, .. } => Some(device),
+            EgmSource::Udp { device, .. }
+            | EgmSource::Builtin { device, .. }
+            | EgmSource::Seam { device, .. } => Some(device),
             EgmSource::Signals { .. } => None,
         }
     }
@@ -173,6 +189,43 @@ impl Peer {
                 }
                 Err(e) => Some(EgmEvent::new(EventKind::BuiltinSensor, e.to_string())),
             },
+        }
+    }
+
+    /// Lockstep: blocks up to `timeout` (real time) for one valid datagram and hands it to
+    /// the session at `now`; returns whether one was accepted. Only a UDP peer waits.
+    pub(super) fn wait_reply(
+        &mut self,
+        now: Duration,
+        timeout: Duration,
+        session: &mut EgmSession,
+        events: &mut EventQueue,
+    ) -> bool {
+        let Peer::Udp(transport) = self else {
+            return false;
+        };
+        let start = Instant::now();
+        let deadline = start.checked_add(timeout).unwrap_or(start);
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return false;
+            }
+            match transport.recv_timeout(left) {
+                Ok(Some((src, bytes))) => {
+                    if session.handle_datagram(now, src, bytes) == Outcome::Accepted {
+                        return true;
+                    }
+                }
+                Ok(None) => return false,
+                Err(e) => {
+                    events.push(EgmEvent::new(
+                        EventKind::SendError,
+                        format!("receiving from the UdpUc device failed: {e}"),
+                    ));
+                    return false;
+                }
+            }
         }
     }
 

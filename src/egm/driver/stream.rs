@@ -1,6 +1,5 @@
 //! A position stream (EGMStreamStart, `\StreamStart`): `EgmRobot` at the sample rate during ordinary RAPID motion, MCI_STOPPED, no replies needed and no comm time-out.
 
-use std::collections::VecDeque;
 use std::time::Duration;
 
 use crate::egm::EgmError;
@@ -15,6 +14,7 @@ use crate::egm::types::{
 };
 use crate::robot::{Robot, ToolData, WobjData};
 
+use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
 use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, robot_limits};
 
@@ -40,8 +40,7 @@ pub struct EgmStream {
     peer: Peer,
     pattern: Option<SensorPattern>,
     buf: Vec<u8>,
-    delay: VecDeque<Joints>,
-    delay_steps: usize,
+    delay: DelayLine,
     servo_delay: Duration,
     events: EventQueue,
     log: LogRing,
@@ -75,7 +74,7 @@ impl EgmStream {
                 pattern = Some(p);
                 (device, Peer::Builtin(None), BUILTIN_ADDR, SourceFilter::Any)
             }
-            EgmSource::Signals { .. } => {
+            EgmSource::Signals { .. } | EgmSource::Seam { .. } => {
                 return Err(EgmError::BadSetup {
                     instruction,
                     detail: "a position stream needs a UdpUc setup (EGMSetupUC)".to_string(),
@@ -94,11 +93,7 @@ impl EgmStream {
             detail: e.to_string(),
         })?;
         session.start(now);
-        let tick = ctx.options.tick.as_nanos().max(1);
-        let delay_steps =
-            usize::try_from((ctx.options.servo_delay.as_nanos() + tick / 2) / tick).unwrap_or(0);
-        let mut delay = VecDeque::with_capacity(delay_steps + 1);
-        delay.extend(std::iter::repeat_n(*current, delay_steps));
+        let delay = DelayLine::new(ctx.options.servo_delay, ctx.options.tick, *current);
         Ok(EgmStream {
             name: plan.name.clone(),
             device,
@@ -110,7 +105,6 @@ impl EgmStream {
             pattern,
             buf: Vec::with_capacity(512),
             delay,
-            delay_steps,
             servo_delay: ctx.options.servo_delay,
             events: EventQueue::with_capacity(),
             log: LogRing::new(&plan.name, ctx.options.log_capacity),
@@ -133,12 +127,7 @@ impl EgmStream {
         // Replies are not needed; read and discard them so the socket never fills up.
         self.peer.receive(now, &mut self.session, &mut self.events);
         while self.session.poll_reference().is_some() {}
-        self.delay.push_back(*commanded);
-        let measured = if self.delay.len() > self.delay_steps {
-            self.delay.pop_front().unwrap_or(*commanded)
-        } else {
-            *commanded
-        };
+        let measured = self.delay.push(*commanded);
         let pose = |q: &Joints| {
             feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj)
                 .ok()
