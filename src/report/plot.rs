@@ -323,7 +323,6 @@ fn draw_motion<DB: DrawingBackend>(
         })
         .collect();
     joints.vlines = marks(true);
-    joints.draw(&top)?;
 
     let mut tcp = Panel::new("TCP position (world)", "time (s)", "mm", (t0, t1));
     tcp.curves = ["x", "y", "z"]
@@ -342,11 +341,27 @@ fn draw_motion<DB: DrawingBackend>(
         })
         .collect();
     tcp.vlines = marks(false);
-    tcp.draw(&middle)?;
 
     let mut speed = Panel::new("TCP speed", "time (s)", "mm/s", (t0, t1));
     let pts = series(&|k| data.speed.get(k).copied().unwrap_or(f64::NAN));
     speed.curves = vec![Curve::new("speed", BLACK, Stroke::Solid(2), pts)];
     speed.vlines = marks(false);
-    speed.draw(&bottom)
+    let mut stack = [(joints, &top), (tcp, &middle), (speed, &bottom)];
+    align(&mut stack);
+    for (panel, area) in &stack {
+        panel.draw(area)?;
+    }
+    Ok(())
+}
+
+/// Give panels stacked over the same x range one y label width, so their x axes line up.
+fn align<DB: DrawingBackend>(stack: &mut [(Panel<'_>, &DrawingArea<DB, Shift>)]) {
+    let w = stack
+        .iter()
+        .map(|(p, area)| p.y_label_px(area))
+        .max()
+        .unwrap_or(80);
+    for (p, _) in stack.iter_mut() {
+        p.min_y_label_px = w;
+    }
 }

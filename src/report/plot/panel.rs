@@ -61,6 +61,19 @@ pub(super) struct Spans {
     pub ranges: Vec<(f64, f64)>,
 }
 
+/// The y axis of a panel in its area.
+struct YAxis {
+    lo: f64,
+    hi: f64,
+    decimals: usize,
+    label_px: u32,
+    /// Label rows along the top and their height (px).
+    rows: usize,
+    room: f64,
+    /// Height of the plotting area (px, estimated).
+    plot_px: f64,
+}
+
 /// A chart to draw into an area.
 pub(super) struct Panel<'a> {
     pub caption: &'a str,
@@ -74,6 +87,8 @@ pub(super) struct Panel<'a> {
     pub min_pad: f64,
     pub legend: SeriesLabelPosition,
     pub caption_size: u32,
+    /// The y label area is at least this wide (px).
+    pub min_y_label_px: u32,
 }
 
 /// Height of one row of labels (px).
@@ -96,6 +111,7 @@ impl<'a> Panel<'a> {
             min_pad: 1.0,
             legend: SeriesLabelPosition::MiddleRight,
             caption_size: 24,
+            min_y_label_px: 80,
         }
     }
 
@@ -105,23 +121,11 @@ impl<'a> Panel<'a> {
         area: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         let (x0, x1) = self.x;
-        let (lo, hi) = self.y_data_range();
-        let pad = ((hi - lo) * 0.08).max(self.min_pad);
-        let (lo, hi) = (lo - pad, hi + pad);
-        // Head room for the label rows, in data units.
-        let (w_px, h_px) = area.dim_in_pixel();
-        let rows = self.label_rows();
-        let plot_px = (f64::from(h_px) - CHROME_PX).max(40.0);
-        let room = rows as f64 * LABEL_ROW_PX + if rows > 0 { 6.0 } else { 0.0 };
-        let hi = hi + (hi - lo) * room / (plot_px - room).max(20.0);
-        let (xd, yd) = (decimals(x1 - x0), decimals(hi - lo));
-        // Wide enough for the longest tick label (e.g. 1014.625) and the unit.
-        let label_chars = [lo, hi]
-            .iter()
-            .map(|v| format_tick(*v, yd).chars().count())
-            .max()
-            .unwrap_or(4);
-        let y_label_px = (label_chars as u32 * 11 + 45).max(80);
+        let (w_px, _) = area.dim_in_pixel();
+        let y = self.y_axis(area);
+        let (lo, hi, yd, y_label_px) = (y.lo, y.hi, y.decimals, y.label_px);
+        let (rows, room, plot_px) = (y.rows, y.room, y.plot_px);
+        let xd = decimals(x1 - x0);
         let plot_w = (f64::from(w_px) - f64::from(MARGIN_X_PX + y_label_px)).max(1.0);
         let mut chart = ChartBuilder::on(area)
             .margin_left(20)
@@ -203,6 +207,41 @@ impl<'a> Panel<'a> {
                 .draw()?;
         }
         Ok(())
+    }
+
+    /// Pixels for the y tick labels and the unit: enough for the longest label, at least
+    /// [`Panel::min_y_label_px`] (set it to the largest of stacked panels to align them).
+    pub fn y_label_px<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> u32 {
+        self.y_axis(area).label_px
+    }
+
+    fn y_axis<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> YAxis {
+        let (lo, hi) = self.y_data_range();
+        let pad = ((hi - lo) * 0.08).max(self.min_pad);
+        let (lo, hi) = (lo - pad, hi + pad);
+        // Head room for the label rows, in data units.
+        let (_, h_px) = area.dim_in_pixel();
+        let rows = self.label_rows();
+        let plot_px = (f64::from(h_px) - CHROME_PX).max(40.0);
+        let room = rows as f64 * LABEL_ROW_PX + if rows > 0 { 6.0 } else { 0.0 };
+        let hi = hi + (hi - lo) * room / (plot_px - room).max(20.0);
+        let decimals = decimals(hi - lo);
+        // Wide enough for the longest tick label (e.g. 1014.625) and the unit.
+        let label_chars = [lo, hi]
+            .iter()
+            .map(|v| format_tick(*v, decimals).chars().count())
+            .max()
+            .unwrap_or(4);
+        let label_px = (label_chars as u32 * 11 + 45).max(self.min_y_label_px);
+        YAxis {
+            lo,
+            hi,
+            decimals,
+            label_px,
+            rows,
+            room,
+            plot_px,
+        }
     }
 
     fn y_data_range(&self) -> (f64, f64) {

@@ -84,6 +84,7 @@ pub(super) fn draw<DB: DrawingBackend>(
         .collect();
     let at = |v: [f64; 2], i: usize| v.get(i).copied().unwrap_or(f64::NAN);
 
+    let mut stack = Vec::new();
     for (i, (area, caption)) in [
         (&y_area, "Lateral: y in the path frame"),
         (&z_area, "Vertical: z in the path frame"),
@@ -109,7 +110,7 @@ pub(super) fn draw<DB: DrawingBackend>(
             ),
             Curve::new("seam (sensor)", SEAM, Stroke::Dots, measured(i)),
         ];
-        p.draw(area)?;
+        stack.push((p, area));
     }
 
     let mut c = Panel::new(
@@ -152,5 +153,10 @@ pub(super) fn draw<DB: DrawingBackend>(
             series(&|k, p| remaining(k, p, 1)),
         ),
     ];
-    c.draw(&corr_area)
+    stack.push((c, &corr_area));
+    super::align(&mut stack);
+    for (panel, area) in &stack {
+        panel.draw(area)?;
+    }
+    Ok(())
 }
