@@ -5,8 +5,10 @@
 pub mod feed;
 pub mod num;
 pub mod plot;
+pub mod progress;
 pub mod trace;
 
 pub use feed::{EgmAxes, EgmSample, EgmTraceState, Feed, FeedItem, FeedRx, PathCorrSample};
 pub use plot::{PlotData, PlotRecorder};
+pub use progress::{Progress, ProgressSink};
 pub use trace::{TRACE_HEADER, TraceColumns, TraceWriter};

@@ -5,15 +5,29 @@
 //! # Wiring
 //!
 //! ```
-//! use rapidvc::report::{Feed, TraceColumns, TraceWriter};
+//! # fn main() -> Result<(), String> {
+//! # let dir = std::env::temp_dir();
+//! use rapidvc::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 //!
 //! let mut feed = Feed::new();
 //! // Every consumer subscribes before the feed is handed to the producer.
 //! let trace = TraceWriter::with_feed(Vec::new(), None, TraceColumns::EGM_AND_PATHCORR, feed.subscribe());
-//! // … `trace` goes into the controller's sinks, `feed` (or a clone) into the EGM driver,
-//! // which calls `feed.push_egm_sample(…)` from its cycle hook.
-//! # let _ = (trace, feed);
+//! let plot = PlotRecorder::new(&dir.join("run.svg"), "run", None)?.with_feed(feed.subscribe());
+//! // `trace` and `plot` go into the controller's sinks, `feed` (or a clone) into the EGM
+//! // driver, which calls `feed.push_egm_sample(…)` from its cycle hook's `after_tick`.
+//! # let _ = (trace, plot, feed);
+//! # Ok(())
+//! # }
 //! ```
+//!
+//! # What to push
+//!
+//! - Position guidance and streaming (`EGMRunJoint`, `EGMRunPose`, `EGMStreamStart`): one
+//!   [`Feed::push_egm_sample`] per EGM cycle, with the state `RUNNING`.
+//! - Path correction (`EGMMoveL`, `EGMMoveC`): one [`Feed::push_pathcorr_sample`] per motion
+//!   cycle, and the state changes with [`Feed::push_egm_state`].
+//! - Every state change outside a cycle (setup → `CONNECTED`, end of a movement →
+//!   `CONNECTED`, `EGMReset` → `DISCONNECTED`): [`Feed::push_egm_state`].
 //!
 //! # Alignment with the trace rows
 //!
