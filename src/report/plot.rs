@@ -365,3 +365,49 @@ fn align<DB: DrawingBackend>(stack: &mut [(Panel<'_>, &DrawingArea<DB, Shift>)])
         p.min_y_label_px = w;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::RobotTime;
+    use crate::report::feed::{EgmAxes, EgmSample};
+
+    #[test]
+    fn hostile_values_render_without_panicking() {
+        let dir = std::env::temp_dir().join(format!("rapidvc-plot-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut data = PlotData {
+            title: "hostile".into(),
+            ..PlotData::default()
+        };
+        for (k, v) in [0.0, f64::NAN, 1e300, f64::INFINITY, -1e300, 2.0]
+            .into_iter()
+            .enumerate()
+        {
+            data.t.push(k as f64 * 0.004);
+            data.joints.push([v; 6]);
+            data.tcp.push([v; 3]);
+            data.speed.push(v);
+            let t = RobotTime::from_nanos(k as u64 * 4_000_000);
+            data.absorb(FeedItem::Egm(EgmSample {
+                t,
+                axes: EgmAxes::Pose,
+                reference: Some([v; 6]),
+                feedback: [-v; 6],
+                state: EgmTraceState::Running,
+                speed_limited: k % 2 == 0,
+            }));
+            data.absorb(FeedItem::PathCorr(PathCorrSample {
+                t,
+                s_mm: if k == 3 { f64::NAN } else { v },
+                programmed_yz: [v, -v],
+                corrected_yz: [v, v],
+                measured_yz: Some([v, 0.0]),
+            }));
+        }
+        render(&dir.join("hostile.svg"), &data).unwrap();
+        // Empty data draws empty charts.
+        render(&dir.join("empty.png"), &PlotData::default()).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

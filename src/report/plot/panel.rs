@@ -232,7 +232,7 @@ impl<'a> Panel<'a> {
             .map(|v| format_tick(*v, decimals).chars().count())
             .max()
             .unwrap_or(4);
-        let label_px = (label_chars as u32 * 11 + 45).max(self.min_y_label_px);
+        let label_px = (label_chars.min(24) as u32 * 11 + 45).max(self.min_y_label_px);
         YAxis {
             lo,
             hi,
