@@ -1,6 +1,13 @@
 //! `--plot FILE.svg|.png`: joint angles, TCP position and TCP speed against time, with the
 //! program's move instructions marked by vertical lines and labels (`MoveL L12`), sized and
-//! coloured to be projected in a classroom.
+//! coloured to be projected in a classroom. When the controller fed EGM or path-correction
+//! samples (through a [`Feed`](super::feed::Feed) subscribed with
+//! [`PlotRecorder::with_feed`]), sections below show EGM reference against feedback and the
+//! tracking error, and the programmed, measured and corrected path in the path frame.
+
+mod egm;
+mod panel;
+mod pathcorr;
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Once};
@@ -12,8 +19,13 @@ use crate::controller::TickSink;
 use crate::motion::Setpoint;
 use crate::source::SourceMap;
 
-/// Picture size in pixels.
+use super::feed::{EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample};
+use panel::{Curve, Panel, Stroke, VLine};
+
+/// Picture width and the height of the joint/TCP/speed part, in pixels.
 const SIZE: (u32, u32) = (1600, 1100);
+/// Height added for the path-correction section.
+const PATHCORR_HEIGHT: u32 = 950;
 /// At most this many points per curve are drawn (longer runs are thinned evenly).
 const MAX_POINTS: usize = 4000;
 /// The embedded font (DejaVu Sans subset, see `assets/fonts/README.md`).
@@ -44,6 +56,32 @@ pub struct PlotData {
     pub speed: Vec<f64>,
     /// Instruction starts.
     pub marks: Vec<Mark>,
+    /// EGM cycles, in time order.
+    pub egm: Vec<EgmSample>,
+    /// EGM state changes: time (s) and the new state.
+    pub egm_states: Vec<(f64, EgmTraceState)>,
+    /// Path-correction cycles, in time order.
+    pub pathcorr: Vec<PathCorrSample>,
+}
+
+impl PlotData {
+    /// Add one fed item (EGM samples and state changes, path-correction samples).
+    pub fn absorb(&mut self, item: FeedItem) {
+        let (t, state) = match item {
+            FeedItem::Egm(s) => {
+                self.egm.push(s);
+                (s.t, s.state)
+            }
+            FeedItem::EgmState(t, state) => (t, state),
+            FeedItem::PathCorr(s) => {
+                self.pathcorr.push(s);
+                return;
+            }
+        };
+        if self.egm_states.last().map(|(_, s)| *s) != Some(state) {
+            self.egm_states.push((t.as_secs_f64(), state));
+        }
+    }
 }
 
 /// Collects setpoints and renders the plot when the run finishes.
@@ -52,6 +90,7 @@ pub struct PlotRecorder {
     lines: Option<Arc<SourceMap>>,
     data: PlotData,
     last_id: Option<u64>,
+    feed: Option<FeedRx>,
 }
 
 impl PlotRecorder {
@@ -71,7 +110,15 @@ impl PlotRecorder {
                 ..PlotData::default()
             },
             last_id: None,
+            feed: None,
         })
+    }
+
+    /// Also draw what is pushed into the feed `feed` was subscribed to (EGM and path
+    /// correction sections).
+    pub fn with_feed(mut self, feed: FeedRx) -> PlotRecorder {
+        self.feed = Some(feed);
+        self
     }
 
     /// The data collected so far.
@@ -82,6 +129,10 @@ impl PlotRecorder {
 
 impl TickSink for PlotRecorder {
     fn record(&mut self, sp: &Setpoint) {
+        if let Some(feed) = &mut self.feed {
+            let data = &mut self.data;
+            feed.drain_until(sp.time, |item| data.absorb(item));
+        }
         let t = sp.time.as_secs_f64();
         let p = sp.tcp.translation.vector;
         self.data.t.push(t);
@@ -112,6 +163,10 @@ impl TickSink for PlotRecorder {
     }
 
     fn finish(&mut self) -> Result<(), String> {
+        if let Some(feed) = &mut self.feed {
+            let data = &mut self.data;
+            feed.drain_all(|item| data.absorb(item));
+        }
         render(&self.path, &self.data)
     }
 }
@@ -152,18 +207,28 @@ fn register_font() {
 pub fn render(path: &Path, data: &PlotData) -> Result<(), String> {
     register_font();
     let fail = |e: String| format!("cannot draw the plot {}: {e}", path.display());
+    let size = (SIZE.0, total_height(data));
     match Format::of(path)? {
         Format::Svg => {
-            let root = SVGBackend::new(path, SIZE).into_drawing_area();
+            let root = SVGBackend::new(path, size).into_drawing_area();
             draw(&root, data).map_err(fail)?;
             root.present().map_err(|e| fail(e.to_string()))
         }
         Format::Png => {
-            let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+            let root = BitMapBackend::new(path, size).into_drawing_area();
             draw(&root, data).map_err(fail)?;
             root.present().map_err(|e| fail(e.to_string()))
         }
     }
+}
+
+fn total_height(data: &PlotData) -> u32 {
+    let mut h = SIZE.1;
+    h += egm::height(data);
+    if !data.pathcorr.is_empty() {
+        h += PATHCORR_HEIGHT;
+    }
+    h
 }
 
 const JOINT_COLORS: [RGBColor; 6] = [
@@ -188,190 +253,161 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, data: &PlotData) -> R
         .titled(&data.title, (FONT, 32).into_font().color(&BLACK))
         .map_err(err)?;
     let (_, h) = root.dim_in_pixel();
-    let joints_h = h * 45 / 100;
-    let tcp_h = h * 33 / 100;
-    let (top, rest) = root.split_vertically(joints_h);
-    let (middle, bottom) = rest.split_vertically(tcp_h);
-    let stride = data.t.len() / MAX_POINTS + 1;
+    let egm_h = egm::height(data);
+    let pathcorr_h = if data.pathcorr.is_empty() {
+        0
+    } else {
+        PATHCORR_HEIGHT
+    };
+    let motion_h = h.saturating_sub(egm_h + pathcorr_h);
+    let (motion, rest) = root.split_vertically(motion_h);
+    let (egm_area, pathcorr_area) = rest.split_vertically(egm_h);
+    draw_motion(&motion, data).map_err(err)?;
+    if egm_h > 0 {
+        egm::draw(&egm_area, data).map_err(err)?;
+    }
+    if !data.pathcorr.is_empty() {
+        pathcorr::draw(&pathcorr_area, data).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Thin a series of `n` points evenly to at most [`MAX_POINTS`] (the last is always kept).
+fn keep(k: usize, n: usize) -> bool {
+    let stride = n / MAX_POINTS + 1;
+    k.is_multiple_of(stride) || k + 1 == n
+}
+
+/// Joints, TCP and speed against time.
+fn draw_motion<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    data: &PlotData,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (_, h) = area.dim_in_pixel();
+    let (top, rest) = area.split_vertically(h * 45 / 100);
+    let (middle, bottom) = rest.split_vertically(h * 33 / 100);
     let t0 = data.t.first().copied().unwrap_or(0.0);
     let t1 = data.t.last().copied().unwrap_or(1.0).max(t0 + 1e-3);
+    let n = data.t.len();
+    let series = |value: &dyn Fn(usize) -> f64| -> Vec<(f64, f64)> {
+        data.t
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| keep(*k, n))
+            .map(|(k, t)| (*t, value(k)))
+            .collect()
+    };
+    let marks = |labels: bool| -> Vec<VLine> {
+        data.marks
+            .iter()
+            .map(|m| VLine {
+                x: m.t,
+                label: labels.then(|| m.label.clone()),
+                color: MARK_COLOR,
+            })
+            .collect()
+    };
 
-    let joint_series: Vec<(String, RGBColor, Vec<f64>)> = (0..6)
+    let mut joints = Panel::new("Joint angles", "time (s)", "deg", (t0, t1));
+    joints.curves = (0..6)
         .map(|i| {
-            let ys = data
-                .joints
-                .iter()
-                .map(|q| q.get(i).copied().unwrap_or(0.0))
-                .collect();
-            (
-                format!("J{}", i + 1),
-                JOINT_COLORS.get(i).copied().unwrap_or(BLACK),
-                ys,
-            )
+            let pts = series(&|k| {
+                data.joints
+                    .get(k)
+                    .and_then(|q| q.get(i))
+                    .copied()
+                    .unwrap_or(f64::NAN)
+            });
+            let color = JOINT_COLORS.get(i).copied().unwrap_or(BLACK);
+            Curve::new(&format!("J{}", i + 1), color, Stroke::Solid(2), pts)
         })
         .collect();
-    panel(
-        &top,
-        data,
-        stride,
-        (t0, t1),
-        "Joint angles",
-        "deg",
-        &joint_series,
-        true,
-    )
-    .map_err(err)?;
+    joints.vlines = marks(true);
 
-    let tcp_series: Vec<(String, RGBColor, Vec<f64>)> = ["x", "y", "z"]
+    let mut tcp = Panel::new("TCP position (world)", "time (s)", "mm", (t0, t1));
+    tcp.curves = ["x", "y", "z"]
         .iter()
         .enumerate()
         .map(|(i, name)| {
-            let ys = data
-                .tcp
-                .iter()
-                .map(|p| p.get(i).copied().unwrap_or(0.0))
-                .collect();
-            (
-                name.to_string(),
-                XYZ_COLORS.get(i).copied().unwrap_or(BLACK),
-                ys,
-            )
+            let pts = series(&|k| {
+                data.tcp
+                    .get(k)
+                    .and_then(|p| p.get(i))
+                    .copied()
+                    .unwrap_or(f64::NAN)
+            });
+            let color = XYZ_COLORS.get(i).copied().unwrap_or(BLACK);
+            Curve::new(name, color, Stroke::Solid(2), pts)
         })
         .collect();
-    panel(
-        &middle,
-        data,
-        stride,
-        (t0, t1),
-        "TCP position (world)",
-        "mm",
-        &tcp_series,
-        false,
-    )
-    .map_err(err)?;
+    tcp.vlines = marks(false);
 
-    let speed_series = vec![("speed".to_string(), BLACK, data.speed.clone())];
-    panel(
-        &bottom,
-        data,
-        stride,
-        (t0, t1),
-        "TCP speed",
-        "mm/s",
-        &speed_series,
-        false,
-    )
-    .map_err(err)?;
+    let mut speed = Panel::new("TCP speed", "time (s)", "mm/s", (t0, t1));
+    let pts = series(&|k| data.speed.get(k).copied().unwrap_or(f64::NAN));
+    speed.curves = vec![Curve::new("speed", BLACK, Stroke::Solid(2), pts)];
+    speed.vlines = marks(false);
+    let mut stack = [(joints, &top), (tcp, &middle), (speed, &bottom)];
+    align(&mut stack);
+    for (panel, area) in &stack {
+        panel.draw(area)?;
+    }
     Ok(())
 }
 
-#[allow(clippy::too_many_arguments)]
-fn panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    data: &PlotData,
-    stride: usize,
-    (t0, t1): (f64, f64),
-    caption: &str,
-    unit: &str,
-    series: &[(String, RGBColor, Vec<f64>)],
-    labels: bool,
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let (mut lo, mut hi) = series
+/// Give panels stacked over the same x range one y label width, so their x axes line up.
+fn align<DB: DrawingBackend>(stack: &mut [(Panel<'_>, &DrawingArea<DB, Shift>)]) {
+    let w = stack
         .iter()
-        .flat_map(|(_, _, ys)| ys.iter().copied())
-        .filter(|y| y.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
-            (a.min(y), b.max(y))
-        });
-    if !(lo.is_finite() && hi.is_finite()) {
-        (lo, hi) = (-1.0, 1.0);
+        .map(|(p, area)| p.y_label_px(area))
+        .max()
+        .unwrap_or(80);
+    for (p, _) in stack.iter_mut() {
+        p.min_y_label_px = w;
     }
-    let pad = ((hi - lo) * 0.08).max(1.0);
-    let (lo, hi) = (lo - pad, hi + pad * if labels { 3.0 } else { 1.0 });
-    let mut chart = ChartBuilder::on(area)
-        .margin_left(20)
-        .margin_right(30)
-        .margin_top(10)
-        .caption(caption, (FONT, 24).into_font())
-        .x_label_area_size(40)
-        .y_label_area_size(80)
-        .build_cartesian_2d(t0..t1, lo..hi)?;
-    chart
-        .configure_mesh()
-        .x_desc("time (s)")
-        .y_desc(unit)
-        .y_label_formatter(&|v| format!("{v:.0}"))
-        .label_style((FONT, 18).into_font())
-        .axis_desc_style((FONT, 18).into_font())
-        .light_line_style(WHITE.mix(0.0))
-        .draw()?;
-    for m in &data.marks {
-        chart.draw_series(std::iter::once(PathElement::new(
-            vec![(m.t, lo), (m.t, hi)],
-            MARK_COLOR.stroke_width(1),
-        )))?;
-    }
-    if labels {
-        draw_labels(&mut chart, data, (t0, t1), hi, pad)?;
-    }
-    for (name, color, ys) in series {
-        let pts = data
-            .t
-            .iter()
-            .zip(ys)
-            .enumerate()
-            .filter(|(k, _)| k % stride == 0 || k + 1 == data.t.len())
-            .map(|(_, (t, y))| (*t, *y));
-        let color = *color;
-        chart
-            .draw_series(LineSeries::new(pts, color.stroke_width(2)))?
-            .label(name.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
-            });
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::MiddleRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 18).into_font())
-        .draw()?;
-    Ok(())
 }
 
-/// Instruction labels along the top of the joint panel, in two staggered rows, skipping a
-/// label when it would overlap the previous one in its row.
-fn draw_labels<DB: DrawingBackend, CT>(
-    chart: &mut ChartContext<'_, DB, CT>,
-    data: &PlotData,
-    (t0, t1): (f64, f64),
-    hi: f64,
-    pad: f64,
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
-where
-    CT: plotters::coord::CoordTranslate<From = (f64, f64)>,
-{
-    let width_px = f64::from(SIZE.0 - 130);
-    let px_per_s = width_px / (t1 - t0);
-    let mut row_end = [f64::NEG_INFINITY; 2];
-    for (k, m) in data.marks.iter().enumerate() {
-        let row = k % 2;
-        let x = (m.t - t0) * px_per_s;
-        let w = m.label.chars().count() as f64 * 9.5 + 10.0;
-        let Some(end) = row_end.get_mut(row) else {
-            continue;
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::RobotTime;
+    use crate::report::feed::{EgmAxes, EgmSample};
+
+    #[test]
+    fn hostile_values_render_without_panicking() {
+        let dir = std::env::temp_dir().join(format!("rapidvc-plot-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut data = PlotData {
+            title: "hostile".into(),
+            ..PlotData::default()
         };
-        if x < *end {
-            continue;
+        for (k, v) in [0.0, f64::NAN, 1e300, f64::INFINITY, -1e300, 2.0]
+            .into_iter()
+            .enumerate()
+        {
+            data.t.push(k as f64 * 0.004);
+            data.joints.push([v; 6]);
+            data.tcp.push([v; 3]);
+            data.speed.push(v);
+            let t = RobotTime::from_nanos(k as u64 * 4_000_000);
+            data.absorb(FeedItem::Egm(EgmSample {
+                t,
+                axes: EgmAxes::Pose,
+                reference: Some([v; 6]),
+                feedback: [-v; 6],
+                state: EgmTraceState::Running,
+                speed_limited: k % 2 == 0,
+            }));
+            data.absorb(FeedItem::PathCorr(PathCorrSample {
+                t,
+                s_mm: if k == 3 { f64::NAN } else { v },
+                programmed_yz: [v, -v],
+                corrected_yz: [v, v],
+                measured_yz: Some([v, 0.0]),
+            }));
         }
-        *end = x + w;
-        let y = hi - pad * (0.3 + 1.1 * row as f64);
-        chart.draw_series(std::iter::once(Text::new(
-            m.label.clone(),
-            (m.t, y),
-            (FONT, 17).into_font().color(&BLACK),
-        )))?;
+        render(&dir.join("hostile.svg"), &data).unwrap();
+        // Empty data draws empty charts.
+        render(&dir.join("empty.png"), &PlotData::default()).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
     }
-    Ok(())
 }
