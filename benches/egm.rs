@@ -1,4 +1,4 @@
-//! EGM benchmarks: encode/decode per message, session and sensor cost, servo step, datagram sizes, and loopback round trip with the built-in sensor.
+//! EGM benchmarks: encode/decode per message, session and sensor cost, servo step, a whole driver tick per source, datagram sizes, and loopback round trip with the built-in sensor.
 //!
 //! `cargo bench --bench egm` runs the criterion groups, then prints datagram sizes and a
 //! real-socket round trip (controller `EgmRobot` → built-in sensor thread → reply read back)
@@ -7,6 +7,7 @@
 
 use std::hint::black_box;
 use std::net::UdpSocket;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use criterion::Criterion;
@@ -17,7 +18,12 @@ use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
 use rapidvc::egm::stats::LatencyHistogram;
 use rapidvc::egm::transport::UdpTransport;
-use rapidvc::egm::{EgmConfig, EgmMode, EgmSession, ExternalAxes, Pose, RapidData, RobotFeedback};
+use rapidvc::egm::{
+    DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,
+    EgmSource, ExternalAxes, Joints, Pose, RapidData, RegistryConfig, RobotFeedback,
+};
+use rapidvc::io::SignalTable;
+use rapidvc::robot::Robot;
 
 fn feedback() -> RobotFeedback {
     let pose = Pose {
@@ -219,11 +225,130 @@ fn loopback(exchanges: u32) {
     );
 }
 
+/// A driver that never finishes (CondTime 9e9 s) for `device` = `pattern` or signals.
+fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmDriver, Joints) {
+    use rapidvc::config::devices::DeviceTable;
+    use rapidvc::egm::registry::{ActJoint, ActPose, RunArgs, SetupSignals, SetupUc};
+    use rapidvc::egm::servo::StopMode;
+    let table = Arc::new(SignalTable::with_builtins());
+    let overrides: Vec<_> = pattern
+        .map(|p| format!("s=builtin:{p}").parse().unwrap())
+        .into_iter()
+        .collect();
+    let devices = DeviceTable::new(None, &overrides).unwrap();
+    let mut reg = EgmRegistry::new(RegistryConfig::new(Default::default(), devices));
+    let id = reg.get_id("egmID1").unwrap();
+    if pattern.is_some() {
+        let setup = SetupUc {
+            mecunit: "ROB_1".into(),
+            profile: "default".into(),
+            device: "s".into(),
+            mode,
+            tracker: None,
+            comm_timeout: None,
+        };
+        reg.setup_uc(id, &setup).unwrap();
+    } else {
+        let sig = |n: &str| Some(table.lookup(n).unwrap());
+        let setup = SetupSignals {
+            mecunit: "ROB_1".into(),
+            profile: "default".into(),
+            kind: rapidvc::io::SignalKind::Ao,
+            mode,
+            tracker: None,
+            mapping: [
+                sig("ao_MoveX"),
+                sig("ao_MoveY"),
+                sig("ao_MoveZ"),
+                None,
+                None,
+                None,
+            ],
+            ext: [None; 6],
+        };
+        reg.setup_signals(id, &setup, &table).unwrap();
+        for (n, v) in [
+            ("ao_MoveX", 900.0),
+            ("ao_MoveY", 100.0),
+            ("ao_MoveZ", 1200.0),
+        ] {
+            table.set(table.lookup(n).unwrap(), v).unwrap();
+        }
+    }
+    let args = RunArgs {
+        cond_time: Some(9e9),
+        ..RunArgs::new(StopMode::Hold)
+    };
+    let plan = if mode == EgmMode::Joint {
+        let mut a = ActJoint::default();
+        a.common.max_speed_deviation = Some(100.0);
+        a.common.sample_rate = Some(sample_ms);
+        reg.act_joint(id, &a).unwrap();
+        reg.run_joint(id, &args, [true, true, true, true, true, true, false])
+            .unwrap()
+    } else {
+        let mut a = ActPose::world();
+        a.common.max_speed_deviation = Some(100.0);
+        a.common.sample_rate = Some(sample_ms);
+        reg.act_pose(id, &a).unwrap();
+        reg.run_pose(id, &args, [true, true, true, false, false, false], None)
+            .unwrap()
+    };
+    let ctx = DriverContext {
+        robot: Robot::default(),
+        signals: table,
+        options: DriverOptions::default(),
+    };
+    let start = [0.0, 10.0, 10.0, 0.0, 40.0, 0.0];
+    let source = EgmSource::open(&plan.source).unwrap();
+    let driver = EgmDriver::start(Duration::ZERO, &ctx, &plan, source, &start).unwrap();
+    (driver, start)
+}
+
+fn driver(c: &mut Criterion) {
+    let cases = [
+        (
+            "egm/driver tick: joint, built-in sine (servo + EgmRobot + in-process reply)",
+            EgmMode::Joint,
+            Some("sine:axis=1,amplitude=5,frequency=0.5"),
+            4.0,
+        ),
+        (
+            "egm/driver tick: pose, built-in circle (IK + Jacobian every tick)",
+            EgmMode::Pose,
+            Some("circle:radius=50,frequency=0.5"),
+            4.0,
+        ),
+        (
+            "egm/driver tick: pose, AO signals every 4 ms (IK every tick)",
+            EgmMode::Pose,
+            None,
+            4.0,
+        ),
+    ];
+    for (name, mode, pattern, rate) in cases {
+        let (mut d, mut q) = endless_driver(mode, pattern, rate);
+        let mut now = Duration::ZERO;
+        c.bench_function(name, |b| {
+            b.iter(|| {
+                now += Duration::from_millis(4);
+                let t = d.tick(black_box(now), &q);
+                q = t.joints_cmd;
+                while d.poll_event().is_some() {}
+                while d.pop_log().is_some() {}
+                black_box(t.joints_cmd)
+            })
+        });
+        assert!(!d.is_finished(), "{name}: {:?}", d.outcome());
+    }
+}
+
 fn main() {
     let bench_mode = std::env::args().any(|a| a == "--bench");
     let mut c = Criterion::default().configure_from_args();
     codec(&mut c);
     session_and_sensor(&mut c);
+    driver(&mut c);
     c.final_summary();
     sizes();
     loopback(if bench_mode { 5000 } else { 50 });

@@ -5,10 +5,12 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod bench;
 mod check;
 mod dump_ast;
 pub mod program;
 mod render;
+pub mod robots;
 mod run;
 mod sensor;
 mod test;
@@ -34,6 +36,10 @@ pub enum Command {
     /// Print the syntax tree of one file (for debugging the parser).
     #[command(hide = true)]
     DumpAst(dump_ast::DumpAstArgs),
+    /// List the robot models with reach, axis ranges and speeds.
+    Robots(robots::RobotsArgs),
+    /// Measure the motion core: virtual-time speed, or real-time cycle jitter under load.
+    Bench(bench::BenchArgs),
     /// Run the built-in EGM sensor over UDP: reply to a controller with a target pattern and
     /// print what arrives plus latency statistics.
     Sensor(Box<sensor::SensorArgs>),
@@ -45,6 +51,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
         Command::Run(args) => run::run(args),
+        Command::Robots(args) => robots::run(args),
+        Command::Bench(args) => bench::run(args),
         Command::Sensor(args) => sensor::run(*args),
         Command::Test(args) => test::run(args),
     }

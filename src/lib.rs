@@ -15,13 +15,16 @@ pub mod ast;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod config;
+pub mod controller;
 pub mod diag;
 pub mod egm;
 pub mod interp;
 pub mod io;
 pub mod ir;
 pub mod load;
+pub mod motion;
 pub mod parse;
+pub mod report;
 pub mod robot;
 pub mod rtlib;
 pub mod sema;

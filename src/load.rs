@@ -127,6 +127,62 @@ mod tests {
     use super::*;
 
     #[test]
+    fn walks_directories_sorted_and_filtered() {
+        let root = std::env::temp_dir().join(format!("rapidvc-load-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        for f in [
+            "b/z.MOD",
+            "b/a.sys",
+            "a.prg",
+            "x.modx",
+            "notes.txt",
+            ".hidden/h.mod",
+            "c/empty/",
+        ] {
+            let path = root.join(f);
+            if f.ends_with('/') {
+                std::fs::create_dir_all(&path).unwrap();
+                continue;
+            }
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, "MODULE m\nENDMODULE\n").unwrap();
+        }
+        let found = find_rapid_files(std::slice::from_ref(&root)).unwrap();
+        let rel: Vec<String> = found
+            .iter()
+            .map(|p| {
+                p.strip_prefix(&root)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/")
+            })
+            .collect();
+        assert_eq!(rel, ["a.prg", "b/a.sys", "b/z.MOD", "x.modx"]);
+        // A file named explicitly is taken whatever its extension; duplicates are dropped.
+        let txt = root.join("notes.txt");
+        let again = find_rapid_files(&[txt.clone(), txt.clone(), root.join("a.prg")]).unwrap();
+        assert_eq!(again, [txt, root.join("a.prg")]);
+        assert!(matches!(
+            find_rapid_files(&[root.join("c")]),
+            Err(LoadError::NoRapidFiles { .. })
+        ));
+        assert!(matches!(
+            find_rapid_files(&[root.join("missing")]),
+            Err(LoadError::NotFound { .. })
+        ));
+        // Latin-1 fallback, CRLF kept.
+        let latin = root.join("l.mod");
+        std::fs::write(&latin, b"! caf\xe9\r\nMODULE m\r\nENDMODULE\r\n").unwrap();
+        let mut map = SourceMap::new();
+        let id = load_file(&mut map, &latin).unwrap();
+        assert_eq!(
+            &*map.get(id).text,
+            "! caf\u{e9}\r\nMODULE m\r\nENDMODULE\r\n"
+        );
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
     fn extensions_any_case() {
         assert!(is_rapid_file(Path::new("a/B.MOD")));
         assert!(is_rapid_file(Path::new("x.Modx")));

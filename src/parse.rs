@@ -5,7 +5,7 @@
 //! every problem as a [`ParseError`] into the [`Diagnostics`]. [`check_structure`] adds the
 //! checks that need the whole tree but no types (duplicate names, placeholders).
 //!
-//! pest is used only here: `grammar/*.pest` at the crate root, bound in [`grammar`].
+//! pest is used only here: `grammar/*.pest` at the crate root, bound in `parse/grammar.rs`.
 
 use crate::ast;
 use crate::diag::Diagnostics;

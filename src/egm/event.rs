@@ -63,6 +63,40 @@ pub enum EventKind {
     SpeedLimited,
     /// 90111: MaxPosDeviation is clamping the EGM position.
     PositionClamped,
+    /// 90112: the EGM command is held at an axis limit.
+    AxisLimit,
+    /// 90113: a speed reference was zeroed or scaled (singularity, joint speed).
+    SpeedRefLimited,
+    /// 90114: a signal source could not be read.
+    SignalSource,
+    /// 90115: the built-in sensor could not answer.
+    BuiltinSensor,
+    /// 90116: the UdpUc device's socket could not be opened.
+    DeviceOpen,
+    /// 50452: path correction with a motion profile that is not Level 2 (ABB).
+    CyclicError,
+    /// 90120: a fifth EGM identity was requested in a task.
+    TooManyIdentities,
+    /// 90121: an EGM instruction on an identity that is not reserved.
+    NotReserved,
+    /// 90122: EGMAct…/EGMRun… on an identity that has no setup.
+    NotSetUp,
+    /// 90123: EGMRun…/EGMMove… on an identity that is not activated.
+    NotActivated,
+    /// 90124: an EGM argument outside its allowed values.
+    ArgumentValue,
+    /// 90125: a motion profile or device that does not exist or cannot be used.
+    Configuration,
+    /// 90126: an EGM instruction on an identity that is busy (running or streaming).
+    Busy,
+    /// 90127: something rapidvc does not model.
+    NotSupported,
+    /// 90128: an EGM movement that does not start in a fine point.
+    NotInFinePoint,
+    /// 90129: an EGM movement before any RAPID movement since the controller start.
+    NoPreviousMove,
+    /// 90130: an EGM setup or activation that cannot be used (frames, signals, trackers).
+    BadSetup,
 }
 
 impl EventKind {
@@ -82,6 +116,23 @@ impl EventKind {
             EventKind::QueueOverflow => 90108,
             EventKind::SpeedLimited => 90110,
             EventKind::PositionClamped => 90111,
+            EventKind::AxisLimit => 90112,
+            EventKind::SpeedRefLimited => 90113,
+            EventKind::SignalSource => 90114,
+            EventKind::BuiltinSensor => 90115,
+            EventKind::DeviceOpen => 90116,
+            EventKind::CyclicError => 50452,
+            EventKind::TooManyIdentities => 90120,
+            EventKind::NotReserved => 90121,
+            EventKind::NotSetUp => 90122,
+            EventKind::NotActivated => 90123,
+            EventKind::ArgumentValue => 90124,
+            EventKind::Configuration => 90125,
+            EventKind::Busy => 90126,
+            EventKind::NotSupported => 90127,
+            EventKind::NotInFinePoint => 90128,
+            EventKind::NoPreviousMove => 90129,
+            EventKind::BadSetup => 90130,
         }
     }
 
@@ -101,6 +152,23 @@ impl EventKind {
             EventKind::QueueOverflow => "EGM receive queue overflow",
             EventKind::SpeedLimited => "EGM speed limited by MaxSpeedDeviation",
             EventKind::PositionClamped => "EGM position clamped by MaxPosDeviation",
+            EventKind::AxisLimit => "EGM command held at an axis limit",
+            EventKind::SpeedRefLimited => "EGM speed reference limited",
+            EventKind::SignalSource => "EGM signal source error",
+            EventKind::BuiltinSensor => "Built-in EGM sensor error",
+            EventKind::DeviceOpen => "EGM UdpUc device cannot be opened",
+            EventKind::CyclicError => "External Interface Cyclic Error",
+            EventKind::TooManyIdentities => "Too many EGM identities",
+            EventKind::NotReserved => "EGM identity not reserved",
+            EventKind::NotSetUp => "EGM identity not set up",
+            EventKind::NotActivated => "EGM identity not activated",
+            EventKind::ArgumentValue => "EGM argument value error",
+            EventKind::Configuration => "EGM configuration error",
+            EventKind::Busy => "EGM identity busy",
+            EventKind::NotSupported => "Not supported by rapidvc",
+            EventKind::NotInFinePoint => "EGM movement not started in a fine point",
+            EventKind::NoPreviousMove => "EGM movement before any RAPID movement",
+            EventKind::BadSetup => "EGM setup error",
         }
     }
 }

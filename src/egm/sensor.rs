@@ -225,6 +225,7 @@ pub struct SensorStats {
 #[derive(Debug)]
 pub struct BuiltinSensor {
     config: SensorConfig,
+    pose_origin: Option<Pose>,
     origin: Option<Origin>,
     session_start: Duration,
     seqno: u32,
@@ -241,6 +242,7 @@ impl BuiltinSensor {
         config.pattern.validate()?;
         Ok(BuiltinSensor {
             config,
+            pose_origin: None,
             origin: None,
             session_start: Duration::ZERO,
             seqno: 0,
@@ -250,6 +252,16 @@ impl BuiltinSensor {
             last_missing: Vec::new(),
             stats: SensorStats::default(),
         })
+    }
+
+    /// Fixes the pose origin of every following session to `pose` instead of the robot's
+    /// `feedBack.cartesian` (`None`: back to the feedback). The in-process sensor of a
+    /// pose-mode run uses this with the TCP in the sensor frame at the start, because
+    /// feedback is reported in the correction frame while the sensor's poses are read in the
+    /// sensor frame: `hold-pose`, `sine` and `circle` then start exactly where the robot is
+    /// even when the two frames differ.
+    pub fn set_pose_origin(&mut self, pose: Option<Pose>) {
+        self.pose_origin = pose;
     }
 
     /// The mode the sensor talks in (the controller's setup must match).
@@ -326,7 +338,7 @@ impl BuiltinSensor {
             self.seqno = 0;
             self.origin = Some(Origin {
                 joints: snap.joints.or(snap.planned_joints),
-                pose: snap.pose,
+                pose: self.pose_origin.or(snap.pose),
             });
         } else {
             if let Some(last) = self.last_arrival {

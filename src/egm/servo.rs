@@ -10,11 +10,17 @@
 //! 4. ramp-in: × min(1, t / `\RampInTime`) (linear);
 //! 5. MaxSpeedDeviation: when max |v_i| exceeds it, all joints are scaled by the same factor
 //!    (reported: [`ServoOutput::speed_limited`], rising edge [`ServoOutput::speed_limit_began`]);
-//! 6. pos_cmd ← pos_cmd + v·Ts, clamped to start ± MaxPosDeviation (reported likewise);
+//! 6. pos_cmd ← pos_cmd + v·Ts, clamped to start ± MaxPosDeviation (reported likewise) and
+//!    to the robot's axis ranges when [`ServoParams::axis_limits`] is set (so a command never
+//!    crosses a joint limit; reported as [`ServoOutput::limit_axes`]);
 //! 7. `planned` = pos_cmd; `feedBack` = pos_cmd delayed by [`ServoParams::servo_delay`];
 //! 8. convergence: every selected axis has ref − feedback inside its `egm_minmax` window
-//!    (or the caller's own error vector, e.g. the Cartesian error in pose mode), held
-//!    continuously for `\CondTime`; then the stop mode ends the run.
+//!    (or the caller's own error vector, e.g. the Cartesian error in pose mode, over
+//!    [`ServoParams::convergence_axes`]), held continuously for `\CondTime`; then the stop
+//!    mode ends the run.
+//!
+//! A filter bandwidth of 0 Hz (allowed for the profile's Default Low Pass Filter Bandwidth)
+//! switches the filter off (α = 1) rather than blocking all motion.
 //!
 //! **Reaction time.** ABB states a control lag of 10–20 ms, "usually about 20 ms" from a new
 //! reference until the robot reacts (RobotStudio measured about 16 ms, a real IRB 4600 about
@@ -49,6 +55,8 @@ pub const DEFAULT_MAX_POS_DEVIATION: f64 = 1000.0;
 pub const DEFAULT_SERVO_DELAY: Duration = Duration::from_millis(12);
 /// `\CondTime` default.
 pub const DEFAULT_COND_TIME: Duration = Duration::from_secs(1);
+/// Shortest step (keeps the servo-delay line small).
+pub const MIN_PERIOD: Duration = Duration::from_micros(100);
 /// Longest servo delay.
 pub const MAX_SERVO_DELAY: Duration = Duration::from_secs(1);
 /// Below this EGM speed (degrees/s) a HOLD stop counts as finished.
@@ -114,6 +122,13 @@ pub struct ServoParams {
     pub windows: [MinMax; ROBOT_AXES],
     /// Axes moved by EGM (`\J1`..`\J6` switches of EGMRunJoint).
     pub selected: [bool; ROBOT_AXES],
+    /// Which entries of the convergence error are checked against `windows`; `None`: the
+    /// `selected` axes. Pose mode moves every joint but checks the selected Cartesian
+    /// directions (`\x`…`\rz`), so it sets this apart from `selected`.
+    pub convergence_axes: Option<[bool; ROBOT_AXES]>,
+    /// The robot's axis ranges `(min, max)`, degrees: the commanded position never leaves
+    /// them. `None`: no axis limits (only MaxPosDeviation).
+    pub axis_limits: Option<[MinMax; ROBOT_AXES]>,
     /// How the run ends.
     pub stop_mode: StopMode,
 }
@@ -136,6 +151,8 @@ impl Default for ServoParams {
             cond_time: DEFAULT_COND_TIME,
             windows: [MinMax::JOINT_DEFAULT; ROBOT_AXES],
             selected: [true; ROBOT_AXES],
+            convergence_axes: None,
+            axis_limits: None,
             stop_mode: StopMode::Hold,
         }
     }
@@ -235,6 +252,10 @@ pub struct ServoOutput {
     pub clamped_axes: u8,
     /// This step is the first of a clamped stretch (report it).
     pub clamp_began: bool,
+    /// Bit i set: axis i+1 was held at its axis limit ([`ServoParams::axis_limits`]).
+    pub limit_axes: u8,
+    /// This step is the first of a stretch held at an axis limit (report it).
+    pub limit_began: bool,
     /// Set once the run has finished, with its cause.
     pub finished: Option<EndCause>,
 }
@@ -260,6 +281,8 @@ pub struct EgmServo {
     phase_duration: Duration,
     was_limited: bool,
     was_clamped: bool,
+    was_at_limit: bool,
+    at_limit: u8,
 }
 
 impl EgmServo {
@@ -275,7 +298,11 @@ impl EgmServo {
         } else {
             params.default_lp_filter_hz
         };
-        let alpha = 1.0 - (-std::f64::consts::TAU * lp * ts).exp();
+        let alpha = if lp > 0.0 {
+            1.0 - (-std::f64::consts::TAU * lp * ts).exp()
+        } else {
+            1.0
+        };
         let delay_steps = delay_steps(params.servo_delay, params.period);
         Ok(EgmServo {
             params,
@@ -296,6 +323,8 @@ impl EgmServo {
             phase_duration: Duration::ZERO,
             was_limited: false,
             was_clamped: false,
+            was_at_limit: false,
+            at_limit: 0,
         })
     }
 
@@ -355,6 +384,7 @@ impl EgmServo {
     /// One step with the reference in force.
     pub fn step(&mut self, input: &ServoInput) -> ServoOutput {
         self.steps += 1;
+        self.at_limit = 0;
         let mut utilization = 0.0;
         let mut limit_factor = 1.0;
         let mut clamped_axes = 0u8;
@@ -413,6 +443,7 @@ impl EgmServo {
                         *c = target;
                     }
                 }
+                self.at_limit = self.hold_in_axis_limits();
                 self.filtered = [0.0; ROBOT_AXES];
                 if s >= 1.0 {
                     self.finish();
@@ -451,6 +482,10 @@ impl EgmServo {
         let clamped = clamped_axes != 0;
         let clamp_began = clamped && !self.was_clamped;
         self.was_clamped = clamped;
+        let limit_axes = self.at_limit;
+        let at_limit = limit_axes != 0;
+        let limit_began = at_limit && !self.was_at_limit;
+        self.was_at_limit = at_limit;
         ServoOutput {
             commanded: self.commanded,
             feedback,
@@ -464,6 +499,8 @@ impl EgmServo {
             limit_factor,
             clamped_axes,
             clamp_began,
+            limit_axes,
+            limit_began,
             finished: (self.phase == ServoPhase::Done)
                 .then_some(self.cause)
                 .flatten(),
@@ -506,6 +543,26 @@ impl EgmServo {
                 *c = bounded;
             }
         }
+        self.at_limit |= self.hold_in_axis_limits();
+        mask
+    }
+
+    /// Keeps the commanded position inside the axis limits; returns the mask of held axes.
+    fn hold_in_axis_limits(&mut self) -> u8 {
+        let Some(limits) = self.params.axis_limits else {
+            return 0;
+        };
+        let mut mask = 0u8;
+        for (i, (c, l)) in self.commanded.iter_mut().zip(&limits).enumerate() {
+            let bounded = c.clamp(l.min, l.max);
+            if bounded != *c {
+                mask |= 1 << i;
+                *c = bounded;
+                if let Some(f) = self.filtered.get_mut(i) {
+                    *f = 0.0;
+                }
+            }
+        }
         mask
     }
 
@@ -524,9 +581,10 @@ impl EgmServo {
     }
 
     fn convergence(&self, input: &ServoInput, feedback: &Joints) -> bool {
+        let axes = self.params.convergence_axes.unwrap_or(self.params.selected);
         let mut any = false;
         for i in 0..ROBOT_AXES {
-            if !self.params.selected.get(i).copied().unwrap_or(false) {
+            if !axes.get(i).copied().unwrap_or(false) {
                 continue;
             }
             any = true;
@@ -548,7 +606,7 @@ impl EgmServo {
             }
         }
         // No axis selected: "no movement, RAPID continues" — trivially converged.
-        any || self.params.selected.iter().all(|s| !s)
+        any || axes.iter().all(|s| !s)
     }
 }
 
@@ -560,6 +618,28 @@ pub fn speed_limit_event(params: &ServoParams, output: &ServoOutput) -> EgmEvent
         format!(
             "requested {requested:.3} deg/s, MaxSpeedDeviation is {} deg/s: all joints scaled by {:.4}; raise \\MaxSpeedDeviation in EGMActJoint/EGMActPose if the robot is too slow",
             params.max_speed_deviation, output.limit_factor
+        ),
+    )
+}
+
+/// The event to log when [`ServoOutput::limit_began`] is set.
+pub fn axis_limit_event(params: &ServoParams, output: &ServoOutput) -> EgmEvent {
+    let axes: Vec<String> = (0..ROBOT_AXES)
+        .filter(|i| output.limit_axes & (1 << i) != 0)
+        .map(|i| {
+            let range = params
+                .axis_limits
+                .and_then(|l| l.get(i).copied())
+                .map(|l| format!(" ({} to {} deg)", l.min, l.max))
+                .unwrap_or_default();
+            format!("J{}{range}", i + 1)
+        })
+        .collect();
+    EgmEvent::new(
+        EventKind::AxisLimit,
+        format!(
+            "{} held at the axis limit; the EGM command does not cross it",
+            axes.join(", ")
         ),
     )
 }
@@ -604,7 +684,12 @@ fn validate(p: &ServoParams) -> Result<(), ServoError> {
         }
     };
     let period = p.period.as_secs_f64();
-    check("period", period, period > 0.0, "(0, ∞) s")?;
+    check(
+        "period",
+        period,
+        p.period >= MIN_PERIOD,
+        "[0.1 ms, ∞) (a motion tick)",
+    )?;
     check("ext_motion_Kp", p.kp, p.kp >= 0.0, "[0, ∞)")?;
     check(
         "\\PosCorrGain",
@@ -616,8 +701,8 @@ fn validate(p: &ServoParams) -> Result<(), ServoError> {
     check(
         "ext_motion_filter_bandwidth",
         p.default_lp_filter_hz,
-        p.default_lp_filter_hz > 0.0,
-        "(0, ∞) Hz",
+        p.default_lp_filter_hz >= 0.0,
+        "[0, ∞) Hz",
     )?;
     check(
         "\\MaxSpeedDeviation",
@@ -641,6 +726,10 @@ fn validate(p: &ServoParams) -> Result<(), ServoError> {
     for w in &p.windows {
         check("egm_minmax.min", w.min, w.min <= w.max, "≤ max")?;
         check("egm_minmax.max", w.max, true, "finite numbers")?;
+    }
+    for l in p.axis_limits.iter().flatten() {
+        check("axis limit min", l.min, l.min <= l.max, "≤ max")?;
+        check("axis limit max", l.max, true, "finite numbers")?;
     }
     Ok(())
 }

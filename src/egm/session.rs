@@ -43,6 +43,8 @@ pub const MAX_DATAGRAM_LEN: usize = 1024;
 pub const DEFAULT_SAMPLE_PERIOD: Duration = Duration::from_millis(4);
 /// Default `\CommTimeout` (ABB's default is not documented; an ABB maintainer recalled 1 s).
 pub const DEFAULT_COMM_TIMEOUT: Duration = Duration::from_secs(1);
+/// How early [`EgmSession::poll_transmit`] may serve a cycle (at most half a period).
+const MAX_EARLY: Duration = Duration::from_millis(1);
 /// Most events waiting in the queue; further ones are counted in `events_dropped`.
 const EVENT_QUEUE: usize = 32;
 /// Largest one-per-cycle queue.
@@ -453,8 +455,10 @@ impl EgmSession {
             return false;
         }
         self.handle_timeout(now);
-        let half = self.config.sample_period / 2;
-        if now.saturating_add(half) < self.next_transmit {
+        // A cycle may be served a little early (clock jitter), but never a whole motion
+        // tick early when the sample period spans several ticks.
+        let early = (self.config.sample_period / 2).min(MAX_EARLY);
+        if now.saturating_add(early) < self.next_transmit {
             return false;
         }
         self.advance_schedule(now);

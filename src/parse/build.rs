@@ -23,6 +23,8 @@ pub(crate) struct Builder<'t, 'd> {
     pub(crate) file: SourceId,
     pub(crate) text: &'t str,
     diags: &'d mut Diagnostics,
+    /// Byte offset of the piece being built: pest parses `&text[base..]`.
+    base: usize,
     /// Errors reported so far in this file.
     pub(crate) errors: usize,
     stopped: bool,
@@ -35,6 +37,7 @@ pub(crate) fn parse(file: SourceId, text: &str, diags: &mut Diagnostics) -> ast:
         file,
         text,
         diags,
+        base: 0,
         errors: 0,
         stopped: false,
     };
@@ -57,24 +60,8 @@ pub(crate) fn parse(file: SourceId, text: &str, diags: &mut Diagnostics) -> ast:
         });
         return empty;
     }
-    let file_pair = match RapidParser::parse(Rule::file, text) {
-        Ok(mut pairs) => pairs.next(),
-        Err(e) => {
-            let pos = match e.location {
-                pest::error::InputLocation::Pos(p) => p,
-                pest::error::InputLocation::Span((p, _)) => p,
-            };
-            b.error(ParseErrorKind::Limit {
-                span: Span::new(file, pos, pos),
-                reason: e.variant.message().into_owned(),
-            });
-            return empty;
-        }
-    };
     let mut out = empty;
-    if let Some(p) = file_pair {
-        b.file_(p, &mut out);
-    }
+    b.file_pieces(&mut out);
     out
 }
 
@@ -82,7 +69,17 @@ impl<'t> Builder<'t, '_> {
     /// The span of a pair.
     pub(crate) fn span(&self, p: &Pair<'_>) -> Span {
         let s = p.as_span();
-        Span::new(self.file, s.start(), s.end())
+        Span::new(self.file, self.base + s.start(), self.base + s.end())
+    }
+
+    /// The byte offset in the file where a pair starts.
+    pub(crate) fn start(&self, p: &Pair<'_>) -> usize {
+        self.base + p.as_span().start()
+    }
+
+    /// The byte offset in the file where a pair ends.
+    pub(crate) fn end(&self, p: &Pair<'_>) -> usize {
+        self.base + p.as_span().end()
     }
 
     /// An identifier from an `ident` (or `<ID>`) pair.
@@ -93,35 +90,35 @@ impl<'t> Builder<'t, '_> {
     /// Report an error (up to [`MAX_ERRORS_PER_FILE`] per file).
     pub(crate) fn error(&mut self, kind: ParseErrorKind) {
         if self.errors >= MAX_ERRORS_PER_FILE {
-            if !self.stopped {
-                self.stopped = true;
-                let span = ParseError::new(self.file, kind).span();
-                self.diags.push(ParseError::new(
-                    self.file,
-                    ParseErrorKind::TooManyErrors {
-                        span,
-                        count: self.errors,
-                    },
-                ));
-            }
+            self.too_many_errors(ParseError::new(self.file, kind).span());
             return;
         }
         self.errors += 1;
         self.diags.push(ParseError::new(self.file, kind));
     }
 
+    /// Note once that errors from `span` on are not reported.
+    fn too_many_errors(&mut self, span: Span) {
+        if !self.stopped {
+            self.stopped = true;
+            self.diags.push(ParseError::new(
+                self.file,
+                ParseErrorKind::TooManyErrors {
+                    span,
+                    count: self.errors,
+                },
+            ));
+        }
+    }
+
     /// Report a region the fast parser skipped.
     pub(crate) fn skipped(&mut self, p: &Pair<'_>, region: Region) {
         if self.errors >= MAX_ERRORS_PER_FILE {
-            // Do not re-parse what will not be reported.
-            self.error(ParseErrorKind::Limit {
-                span: self.span(p),
-                reason: String::new(),
-            });
+            // Do not re-parse what will not be reported; note the cut once.
+            self.too_many_errors(self.span(p));
             return;
         }
-        let s = p.as_span();
-        let kind = recover::diagnose(self.file, self.text, s.start(), s.end(), region);
+        let kind = recover::diagnose(self.file, self.text, self.start(p), self.end(p), region);
         self.error(kind);
     }
 
@@ -143,30 +140,95 @@ impl<'t> Builder<'t, '_> {
     /// Report a missing end keyword: `end` is the `missing_end`-like pair, `opener` the
     /// keyword that opened the construct.
     pub(crate) fn missing_end(&mut self, end: &Pair<'_>, opener: &Pair<'_>, keyword: &'static str) {
-        let span = self.token_span(end.as_span().start());
+        self.missing_end_at(self.start(end), self.span(opener), opener.as_str(), keyword);
+    }
+
+    /// Report a missing end keyword expected at byte `pos`.
+    pub(crate) fn missing_end_at(
+        &mut self,
+        pos: usize,
+        opener: Span,
+        opener_text: &str,
+        keyword: &'static str,
+    ) {
+        let span = self.token_span(pos);
         self.error(ParseErrorKind::MissingEnd {
             span,
-            opener_span: self.span(opener),
+            opener_span: opener,
             keyword,
-            opener: opener.as_str().to_ascii_uppercase(),
+            opener: opener_text.to_ascii_uppercase(),
         });
     }
 
-    fn file_(&mut self, p: Pair<'_>, out: &mut ast::File) {
+    /// Parse and build the file piece by piece: outside a module, one `entry_top` at a time
+    /// (header, module head, or junk); inside, one `entry_module` (up to 16 items, or the end).
+    fn file_pieces(&mut self, out: &mut ast::File) {
+        let mut pos = 0;
+        let mut module: Option<ModuleUnderConstruction<'t>> = None;
         let mut reported_top = false;
-        for item in p.into_inner() {
-            match item.as_rule() {
-                Rule::module => {
-                    if let Some(m) = self.module(item) {
-                        out.modules.push(m);
+        let mut stalls = 0;
+        loop {
+            let rule = if module.is_some() {
+                Rule::entry_module
+            } else {
+                Rule::entry_top
+            };
+            let rest = self.text.get(pos..).unwrap_or("");
+            let piece = match RapidParser::parse(rule, rest) {
+                Ok(mut pairs) => pairs.next(),
+                Err(e) => {
+                    let at = match e.location {
+                        pest::error::InputLocation::Pos(p) => p,
+                        pest::error::InputLocation::Span((p, _)) => p,
+                    };
+                    self.error(ParseErrorKind::Limit {
+                        span: Span::new(self.file, pos + at, pos + at),
+                        reason: e.variant.message().into_owned(),
+                    });
+                    None
+                }
+            };
+            let Some(piece) = piece else { break };
+            self.base = pos;
+            let len = piece.as_span().end();
+            let mut done = false;
+            for item in piece.into_inner() {
+                match item.as_rule() {
+                    Rule::module_open => module = Some(self.module_open(item)),
+                    Rule::bad_top => {
+                        self.skipped(&item, Region::Top);
+                        reported_top = true;
+                    }
+                    Rule::module_end => {
+                        if let Some(m) = module.take() {
+                            out.modules.push(self.module_end(m, item));
+                        }
+                    }
+                    Rule::EOI => done = true,
+                    _ => {
+                        if let Some(m) = module.as_mut() {
+                            self.module_item(m, item);
+                        }
                     }
                 }
-                Rule::bad_top => {
-                    self.skipped(&item, Region::Top);
-                    reported_top = true;
-                }
-                _ => {}
             }
+            pos += len;
+            if done {
+                break;
+            }
+            // Only a module's missing end consumes nothing, and the next piece then does:
+            // two empty pieces in a row would mean a loop.
+            stalls = if len == 0 { stalls + 1 } else { 0 };
+            if stalls > 1 {
+                self.error(ParseErrorKind::Limit {
+                    span: Span::new(self.file, pos, pos),
+                    reason: "the parser made no progress here".into(),
+                });
+                break;
+            }
+        }
+        if let Some(m) = module.take() {
+            out.modules.push(m.module);
         }
         if out.modules.is_empty() && !reported_top {
             let end = self.text.len();
@@ -175,4 +237,14 @@ impl<'t> Builder<'t, '_> {
             });
         }
     }
+}
+
+/// A module whose items are being built (see `build/module.rs`).
+pub(crate) struct ModuleUnderConstruction<'t> {
+    /// The module so far.
+    pub(crate) module: ast::Module,
+    /// The `MODULE` keyword (for "this MODULE is not closed").
+    pub(crate) opener: Span,
+    /// Its text, for the error message.
+    pub(crate) opener_text: &'t str,
 }

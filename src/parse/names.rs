@@ -92,7 +92,7 @@ pub(crate) fn expected(rule: Rule) -> Option<Expected> {
         Rule::kw_if => Keyword("`IF`"),
         Rule::kw_inout => Keyword("`INOUT`"),
         Rule::kw_local => Keyword("`LOCAL`"),
-        Rule::kw_module | Rule::module => Keyword("`MODULE`"),
+        Rule::kw_module | Rule::module_open => Keyword("`MODULE`"),
         Rule::kw_nostepin => Keyword("`NOSTEPIN`"),
         Rule::kw_not => Keyword("`NOT`"),
         Rule::kw_noview => Keyword("`NOVIEW`"),

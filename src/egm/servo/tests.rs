@@ -453,3 +453,69 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn axis_limits_are_never_crossed_and_reported_once() {
+    let mut limits = [MinMax {
+        min: -180.0,
+        max: 180.0,
+    }; 6];
+    limits[0] = MinMax {
+        min: -2.0,
+        max: 2.0,
+    };
+    let params = ServoParams {
+        axis_limits: Some(limits),
+        ..fast()
+    };
+    let mut servo = EgmServo::new(params, START).unwrap();
+    // J1 is asked to go to 5°, beyond its 2° limit.
+    let input = ServoInput::position(target());
+    let mut began = 0;
+    for _ in 0..600 {
+        let o = servo.step(&input);
+        assert!(o.commanded[0] >= -2.0 && o.commanded[0] <= 2.0, "{o:?}");
+        if o.limit_began {
+            began += 1;
+            assert_eq!(o.limit_axes, 1);
+            let e = axis_limit_event(servo.params(), &o);
+            assert_eq!(e.number, 90112);
+            assert!(e.detail.contains("J1 (-2 to 2 deg)"), "{}", e.detail);
+        }
+    }
+    assert_eq!(began, 1, "one report per stretch at the limit");
+    let o = servo.step(&input);
+    assert_eq!(o.commanded[0], 2.0);
+    assert!((o.commanded[2] - 18.0).abs() < 0.1, "other axes still move");
+}
+
+#[test]
+fn convergence_axes_can_differ_from_the_moved_axes() {
+    // Every joint moves, but only entry 2 of the caller's error vector is checked.
+    let params = ServoParams {
+        convergence_axes: Some([false, false, true, false, false, false]),
+        cond_time: Duration::from_millis(8),
+        ..fast()
+    };
+    let mut servo = EgmServo::new(params, START).unwrap();
+    let input = ServoInput {
+        convergence_error: Some([99.0, 99.0, 0.1, 99.0, 99.0, 99.0]),
+        ..ServoInput::position(target())
+    };
+    let o = servo.step(&input);
+    assert!(o.convergence_met);
+    assert!(o.commanded[0] != START[0], "J1 moves although not checked");
+}
+
+#[test]
+fn zero_bandwidth_switches_the_filter_off() {
+    let params = ServoParams {
+        lp_filter_hz: 0.0,
+        default_lp_filter_hz: 0.0,
+        ..fast()
+    };
+    let mut servo = EgmServo::new(params, START).unwrap();
+    let o = servo.step(&ServoInput::position(target()));
+    // Unfiltered: v = k·e = 5 · 5 deg/s on J1 in the first step.
+    assert!((o.velocity[0] - 25.0).abs() < 1e-9, "{:?}", o.velocity);
+}

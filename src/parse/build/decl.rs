@@ -26,7 +26,7 @@ impl Builder<'_, '_> {
                 Rule::kw_const => storage = Storage::Const,
                 Rule::ident | Rule::ph_id => names.push(self.ident(&item)),
                 Rule::dims => dims = self.dims(item)?,
-                Rule::expr => init = Some(self.expr(item)?),
+                Rule::expr | Rule::simple_operand => init = Some(self.expr(item)?),
                 _ => {}
             }
         }

@@ -24,9 +24,17 @@ impl Builder<'_, '_> {
         self.expr_at(p, 0).map(|(e, _)| e)
     }
 
-    /// Build an `expr` pair nested `depth` levels deep.
+    /// Build an `expr` (or `simple_operand`) pair nested `depth` levels deep.
     fn expr_at(&mut self, p: Pair<'_>, depth: usize) -> Built {
         let span = self.span(&p);
+        if p.as_rule() == Rule::simple_operand {
+            let kind = if p.as_str().starts_with(|c: char| c.is_ascii_alphabetic()) {
+                ExprKind::Name(self.ident(&p))
+            } else {
+                ExprKind::Num(self.number(&p))
+            };
+            return Some((Expr { kind, span }, 1));
+        }
         let mut it = p.into_inner().peekable();
         let built = self.climb(&mut it, 0, true, depth + 1, span)?;
         Some(built)

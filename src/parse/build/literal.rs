@@ -35,7 +35,7 @@ impl Builder<'_, '_> {
     /// The value of a `string` pair with escapes decoded; invalid escapes are reported and
     /// kept as written.
     pub(crate) fn string(&mut self, p: &Pair<'_>) -> String {
-        self.string_text(p.as_str(), p.as_span().start())
+        self.string_text(p.as_str(), self.start(p))
     }
 
     /// The value of the string literal `raw` (with its quotes) written at byte `start`.
@@ -100,7 +100,7 @@ impl Builder<'_, '_> {
         depth: usize,
     ) -> Option<(Expr, usize)> {
         let text = p.as_str();
-        let base = p.as_span().start();
+        let base = self.start(p);
         let mut pos = 0;
         self.lit_aggregate(text, base, &mut pos, depth)
     }

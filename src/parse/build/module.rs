@@ -1,21 +1,23 @@
-//! Modules: name, attributes, the items in source order, and the end keyword.
+//! Modules: the head (name, attributes), the items in source order, and the end keyword.
+//! The driver in `build.rs` hands them over piece by piece.
 
-use super::Builder;
 use super::expr::placeholder;
+use super::{Builder, ModuleUnderConstruction};
 use crate::ast::{Ident, Module, ModuleAttr, ModuleItem};
 use crate::parse::grammar::{Pair, Rule};
 use crate::parse::recover::Region;
 use crate::source::Spanned;
 
-impl Builder<'_, '_> {
-    /// A `module` pair.
-    pub(crate) fn module(&mut self, p: Pair<'_>) -> Option<Module> {
-        let span = self.span(&p);
-        let mut inner = p.into_inner();
-        let kw = inner.next()?;
+impl<'t> Builder<'t, '_> {
+    /// A `module_open` pair: `MODULE name [(attributes)]`.
+    pub(crate) fn module_open(&mut self, p: Pair<'t>) -> ModuleUnderConstruction<'t> {
+        let mut span = self.span(&p);
         let mut name: Option<Ident> = None;
         let mut attrs = Vec::new();
-        let mut items = Vec::new();
+        let mut inner = p.into_inner();
+        let kw = inner.next();
+        let opener = kw.as_ref().map_or(span, |k| self.span(k));
+        let opener_text = kw.as_ref().map_or("MODULE", |k| k.as_str());
         for item in inner {
             match item.as_rule() {
                 Rule::ident | Rule::ph_id if name.is_none() => name = Some(self.ident(&item)),
@@ -32,61 +34,73 @@ impl Builder<'_, '_> {
                     }
                 }
                 Rule::bad_head => {
-                    let start = kw.as_span().start();
                     let kind = crate::parse::recover::diagnose(
                         self.file,
                         self.text,
-                        start,
-                        item.as_span().end(),
+                        opener.start as usize,
+                        self.end(&item),
                         Region::ModuleHead,
                     );
                     self.error(kind);
                 }
-                Rule::record_decl => {
-                    if let Some(r) = self.record(item) {
-                        items.push(ModuleItem::Record(r));
-                    }
-                }
-                Rule::alias_decl => {
-                    if let Some(a) = self.alias(item) {
-                        items.push(ModuleItem::Alias(a));
-                    }
-                }
-                Rule::data_decl => {
-                    if let Some(d) = self.data_decl(item) {
-                        items.push(ModuleItem::Data(d));
-                    }
-                }
-                Rule::routine => {
-                    if let Some(r) = self.routine(item) {
-                        items.push(ModuleItem::Routine(r));
-                    }
-                }
-                Rule::item_placeholder => {
-                    let span = self.span(&item);
-                    let ph = item.into_inner().next()?;
-                    items.push(ModuleItem::Placeholder(Spanned::new(
-                        placeholder(ph.as_str()),
-                        span,
-                    )));
-                }
-                Rule::bad_item => self.skipped(&item, Region::Item),
-                Rule::module_end => {
-                    if let Some(m) = item.into_inner().next()
-                        && m.as_rule() == Rule::missing_endmodule
-                    {
-                        self.missing_end(&m, &kw, "ENDMODULE");
-                    }
-                }
                 _ => {}
             }
         }
-        let name = name.unwrap_or_else(|| Spanned::new(String::new(), self.span(&kw).end_point()));
-        Some(Module {
-            name,
-            attrs,
-            items,
-            span,
-        })
+        span = opener.merge(name.as_ref().map_or(opener, |n| n.span));
+        if let Some(a) = attrs.last() {
+            span = span.merge(a.span);
+        }
+        let name = name.unwrap_or_else(|| Spanned::new(String::new(), opener.end_point()));
+        ModuleUnderConstruction {
+            module: Module {
+                name,
+                attrs,
+                items: Vec::new(),
+                span,
+            },
+            opener,
+            opener_text,
+        }
+    }
+
+    /// One module item: a declaration, a routine, a placeholder, or a skipped region.
+    pub(crate) fn module_item(&mut self, m: &mut ModuleUnderConstruction<'t>, item: Pair<'_>) {
+        let span = self.span(&item);
+        let built = match item.as_rule() {
+            Rule::record_decl => self.record(item).map(ModuleItem::Record),
+            Rule::alias_decl => self.alias(item).map(ModuleItem::Alias),
+            Rule::data_decl => self.data_decl(item).map(ModuleItem::Data),
+            Rule::routine => self.routine(item).map(ModuleItem::Routine),
+            Rule::item_placeholder => item
+                .into_inner()
+                .next()
+                .map(|ph| ModuleItem::Placeholder(Spanned::new(placeholder(ph.as_str()), span))),
+            Rule::bad_item => {
+                self.skipped(&item, Region::Item);
+                None
+            }
+            _ => None,
+        };
+        m.module.span = m.module.span.merge(span);
+        if let Some(b) = built {
+            m.module.items.push(b);
+        }
+    }
+
+    /// The `module_end` pair: `ENDMODULE`, or nothing (reported).
+    pub(crate) fn module_end(
+        &mut self,
+        mut m: ModuleUnderConstruction<'_>,
+        end: Pair<'_>,
+    ) -> Module {
+        if let Some(e) = end.into_inner().next() {
+            if e.as_rule() == Rule::missing_endmodule {
+                let at = self.start(&e);
+                self.missing_end_at(at, m.opener, m.opener_text, "ENDMODULE");
+            } else {
+                m.module.span = m.module.span.merge(self.span(&e));
+            }
+        }
+        m.module
     }
 }

@@ -48,7 +48,7 @@ impl Builder<'_, '_> {
         let mut section = Section::Body;
         let mut seen_stmt = false;
         let mut end = None;
-        let start = p.as_span().start();
+        let start = self.start(&p);
         for item in p.into_inner() {
             match item.as_rule() {
                 Rule::kw_local => local = true,
@@ -216,7 +216,7 @@ impl Builder<'_, '_> {
                         self.file,
                         self.text,
                         routine_start,
-                        item.as_span().end(),
+                        self.end(&item),
                         Region::RoutineHead,
                     );
                     self.error(kind);

@@ -18,6 +18,11 @@ MODULE Statements
     Report code:=3, text:="ok";
     Forward level \Fast?Fast \Level ?level;
     WaitTime (0.5);
+    MoveL Offs(spot, 0, 0, 10),   ! comments between the lines of an argument list
+      v100,
+      ! a whole comment line
+      z10, gripTool
+      \WObj:=table;
     WaitTime (0.5) + 1;
 
     ! Late binding

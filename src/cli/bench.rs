@@ -1,0 +1,327 @@
+//! `rapidvc bench virtual|realtime`: measure the motion core. `virtual` runs minutes of mixed
+//! MoveJ/MoveL in virtual time and reports the real-time factor (simulated seconds per wall
+//! second); `realtime` runs the motion thread at its fixed period while busy-loop processes
+//! load every core, and prints the distribution of the cycle-period error.
+
+use std::path::PathBuf;
+use std::process::{Child, ExitCode};
+use std::time::Duration;
+
+use crate::controller::{
+    ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, MonotonicClock,
+    RealtimeConfig, TickSink,
+};
+use crate::motion::RobotTime;
+use crate::report::TraceWriter;
+use crate::robot::command::{
+    EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
+};
+use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
+
+use super::robots::RobotArg;
+
+/// Arguments of `rapidvc bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// What to measure.
+    #[command(subcommand)]
+    pub what: BenchKind,
+}
+
+/// The benchmarks.
+#[derive(Debug, clap::Subcommand)]
+pub enum BenchKind {
+    /// Virtual-time speed: simulated seconds per wall second over mixed MoveJ/MoveL.
+    Virtual {
+        /// Simulated duration in seconds.
+        #[arg(long, default_value_t = 300.0)]
+        seconds: f64,
+        /// Also write a CSV trace (measures the cost of tracing).
+        #[arg(long, value_name = "FILE.csv")]
+        trace: Option<PathBuf>,
+        /// Robot model.
+        #[arg(long, value_name = "NAME", default_value = "IRB 2600-12/1.85")]
+        robot: RobotArg,
+    },
+    /// Real-time cycle jitter under load: histogram of |period − nominal|.
+    Realtime {
+        /// Duration in seconds.
+        #[arg(long, default_value_t = 60.0)]
+        seconds: f64,
+        /// Busy-loop processes to start as load (each ends by itself after the run).
+        #[arg(long, default_value_t = 2)]
+        load: usize,
+        /// Do not ask for SCHED_FIFO priority.
+        #[arg(long)]
+        no_priority: bool,
+        /// Spin this many µs before each deadline instead of sleeping.
+        #[arg(long, default_value_t = 200)]
+        spin_us: u64,
+    },
+}
+
+/// Run a benchmark.
+pub fn run(args: BenchArgs) -> ExitCode {
+    let result = match args.what {
+        BenchKind::Virtual {
+            seconds,
+            trace,
+            robot,
+        } => bench_virtual(seconds, trace, robot),
+        BenchKind::Realtime {
+            seconds,
+            load,
+            no_priority,
+            spin_us,
+        } => bench_realtime(seconds, load, no_priority, Duration::from_micros(spin_us)),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rapidvc bench: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+
+/// A deterministic stream of reachable MoveJ/MoveL commands in front of the robot, tool
+/// pointing down, with fine points and fly-by zones.
+struct Workload {
+    state: u64,
+    id: u64,
+    scale: f64,
+}
+
+impl Workload {
+    fn new(model_reach_mm: f64) -> Workload {
+        Workload {
+            state: 0x2545_F491_4F6C_DD1D,
+            id: 0,
+            // The box below suits the 1.85 m default; smaller robots get a scaled box.
+            scale: (model_reach_mm / 1850.0).min(1.0),
+        }
+    }
+
+    /// Uniform in [0, 1) from a 64-bit LCG (Knuth's MMIX constants).
+    fn uniform(&mut self) -> f64 {
+        self.state = self
+            .state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn next(&mut self) -> MotionCommand {
+        self.id += 1;
+        let s = self.scale;
+        let x = (850.0 + 500.0 * self.uniform()) * s;
+        let y = (-500.0 + 1000.0 * self.uniform()) * s;
+        let z = (600.0 + 700.0 * self.uniform()) * s;
+        let a = (-45.0 + 90.0 * self.uniform()).to_radians() / 2.0;
+        // Tool pointing down (180° about y), turned by `2a` about the vertical.
+        let rot = [0.0, -a.sin(), a.cos(), 0.0];
+        let zone = match self.uniform() {
+            u if u < 0.25 => ZoneData::FINE,
+            u if u < 0.75 => fly_by(10.0),
+            _ => fly_by(50.0),
+        };
+        let args = MoveArgs {
+            id: self.id,
+            source: None,
+            speed: SpeedData::v(500.0 + 1500.0 * self.uniform()),
+            speed_override: None,
+            zone,
+            tool: ToolData::tool0(),
+            wobj: WobjData::wobj0(),
+            tload: None,
+            pdisp: Pose::identity(),
+        };
+        let target = RobTarget {
+            trans: [x, y, z],
+            rot,
+            robconf: ConfData::default(),
+            extax: EXTAX_NONE,
+        };
+        if self.uniform() < 0.5 {
+            MotionCommand::MoveJ(MoveJ {
+                args,
+                target,
+                conf_check: false,
+            })
+        } else {
+            MotionCommand::MoveL(MoveL {
+                args,
+                target,
+                conf_check: false,
+            })
+        }
+    }
+}
+
+fn fly_by(z: f64) -> ZoneData {
+    ZoneData {
+        finep: false,
+        pzone_tcp: z,
+        pzone_ori: 1.5 * z,
+        pzone_eax: 1.5 * z,
+        zone_ori: 0.15 * z,
+        zone_leax: 1.5 * z,
+        zone_reax: 0.15 * z,
+    }
+}
+
+/// Submit workload moves until robot time reaches `until`; returns (moves, refused).
+fn drive(
+    c: &mut ControllerHandle,
+    wl: &mut Workload,
+    until: RobotTime,
+) -> Result<(u64, u64), ControllerError> {
+    let (mut moves, mut refused) = (0, 0);
+    while c.now() < until {
+        let cmd = wl.next();
+        let fine = cmd.args().zone.finep;
+        let id = cmd.id();
+        match c.submit(cmd) {
+            Ok(()) => {
+                moves += 1;
+                if fine && !c.is_realtime() {
+                    // As RAPID does at a stop point: wait until the robot is there.
+                    c.wait_until(Condition::Done(id))?;
+                }
+            }
+            Err(ControllerError::Rejected(_)) => refused += 1,
+            Err(e) => return Err(e),
+        }
+        let _ = c.take_events();
+    }
+    c.wait_until(Condition::InPos)?;
+    Ok((moves, refused))
+}
+
+fn bench_virtual(seconds: f64, trace: Option<PathBuf>, robot: RobotArg) -> Result<(), String> {
+    let mut sinks: Vec<Box<dyn TickSink>> = Vec::new();
+    if let Some(path) = &trace {
+        sinks.push(Box::new(TraceWriter::create(path, None)?));
+    }
+    let config = ControllerConfig::new(Robot::new(robot.0), START);
+    let mut c = ControllerHandle::start(config, sinks).map_err(|e| e.to_string())?;
+    let mut wl = Workload::new(robot.0.reach_mm());
+    let wall = MonotonicClock::new();
+    let (moves, refused) =
+        drive(&mut c, &mut wl, RobotTime::from_secs_f64(seconds)).map_err(|e| e.to_string())?;
+    let summary = c.finish().map_err(|e| e.to_string())?;
+    let elapsed = wall.elapsed();
+    let per_tick_us = elapsed.as_secs_f64() * 1e6 / summary.ticks.max(1) as f64;
+    println!("{summary}");
+    println!(
+        "virtual time: {moves} moves ({refused} refused), {} cycles, {:.2} µs wall per cycle (planning included){}",
+        summary.ticks,
+        per_tick_us,
+        if trace.is_some() {
+            ", with CSV trace"
+        } else {
+            ""
+        }
+    );
+    println!(
+        "real-time factor: {:.0}× (goal ≥ 1000×)",
+        summary.realtime_factor()
+    );
+    Ok(())
+}
+
+fn bench_realtime(
+    seconds: f64,
+    load: usize,
+    no_priority: bool,
+    spin: Duration,
+) -> Result<(), String> {
+    let mut children: Vec<Child> = Vec::new();
+    let bound = (seconds + 15.0).ceil().to_string();
+    for _ in 0..load {
+        // `timeout` ends the busy loop by itself even if this process dies first.
+        match std::process::Command::new("timeout")
+            .args([bound.as_str(), "sh", "-c", "while :; do :; done"])
+            .spawn()
+        {
+            Ok(ch) => children.push(ch),
+            Err(e) => {
+                stop_children(&mut children);
+                return Err(format!(
+                    "cannot start the load processes (timeout, sh): {e}"
+                ));
+            }
+        }
+    }
+    let result = realtime_run(seconds, no_priority, spin, load);
+    stop_children(&mut children);
+    result
+}
+
+fn realtime_run(
+    seconds: f64,
+    no_priority: bool,
+    spin: Duration,
+    load: usize,
+) -> Result<(), String> {
+    let mut config = ControllerConfig::new(Robot::default(), START);
+    config.clock = ClockMode::RealTime(if no_priority {
+        RealtimeConfig::Ignore
+    } else {
+        RealtimeConfig::Enforce
+    });
+    config.spin = spin;
+    let mut c = ControllerHandle::start(config, Vec::new()).map_err(|e| match e {
+        ControllerError::Priority(m) => format!("{m} (or use --no-priority)"),
+        other => other.to_string(),
+    })?;
+    let mut wl = Workload::new(Robot::default().model().reach_mm());
+    let (moves, refused) =
+        drive(&mut c, &mut wl, RobotTime::from_secs_f64(seconds)).map_err(|e| e.to_string())?;
+    let summary = c.finish().map_err(|e| e.to_string())?;
+    println!("{summary}");
+    println!(
+        "real time: {moves} moves ({refused} refused), load {load} busy processes, {}, spin {} µs",
+        if no_priority {
+            "normal priority"
+        } else {
+            "SCHED_FIFO"
+        },
+        spin.as_micros()
+    );
+    if let Some(stats) = &summary.period_stats {
+        println!(
+            "cycle-period error |actual − 4 ms|: {}",
+            stats.summary_line()
+        );
+        print!("{}", stats.histogram(50));
+        println!(
+            "goal p99 ≤ 200 µs: {}; goal max ≤ 1 ms: {}",
+            verdict(stats.percentile(0.99) <= Duration::from_micros(200)),
+            verdict(stats.max() <= Duration::from_millis(1))
+        );
+    }
+    Ok(())
+}
+
+fn verdict(ok: bool) -> &'static str {
+    if ok { "met" } else { "NOT met" }
+}
+
+/// End the load processes: SIGTERM to each `timeout`, which passes it on to its busy loop
+/// (a SIGKILL would orphan the loop until the timeout).
+fn stop_children(children: &mut Vec<Child>) {
+    for ch in children.iter_mut() {
+        let terminated = std::process::Command::new("kill")
+            .args(["-TERM", &ch.id().to_string()])
+            .status()
+            .is_ok_and(|s| s.success());
+        if !terminated {
+            let _ = ch.kill();
+        }
+        let _ = ch.wait();
+    }
+    children.clear();
+}

@@ -1,0 +1,216 @@
+//! A position stream (EGMStreamStart, `\StreamStart`): `EgmRobot` at the sample rate during ordinary RAPID motion, MCI_STOPPED, no replies needed and no comm time-out.
+
+use std::time::Duration;
+
+use crate::egm::EgmError;
+use crate::egm::event::EgmEvent;
+use crate::egm::guidance::feedback_in_wobj;
+use crate::egm::log::{LogKind, LogRing, LogRow};
+use crate::egm::registry::StreamPlan;
+use crate::egm::sensor::SensorPattern;
+use crate::egm::session::{EgmConfig, EgmSession, SourceFilter};
+use crate::egm::types::{
+    ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState, RobotFeedback,
+};
+use crate::robot::{Robot, ToolData, WobjData};
+
+use super::delay::DelayLine;
+use super::source::{BUILTIN_ADDR, Peer};
+use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, robot_limits};
+
+/// The result of one stream tick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StreamTick {
+    /// An `EgmRobot` went out this tick.
+    pub sent: bool,
+    /// Events waiting in [`EgmStream::poll_event`].
+    pub events: usize,
+}
+
+/// One position stream. Call [`EgmStream::tick`] every motion tick with the joints the
+/// motion core commands; the measured position is those joints delayed by the servo delay.
+#[derive(Debug)]
+pub struct EgmStream {
+    name: String,
+    device: String,
+    robot: Robot,
+    tool: ToolData,
+    wobj: WobjData,
+    session: EgmSession,
+    peer: Peer,
+    pattern: Option<SensorPattern>,
+    buf: Vec<u8>,
+    delay: DelayLine,
+    servo_delay: Duration,
+    events: EventQueue,
+    log: LogRing,
+}
+
+impl EgmStream {
+    /// Starts streaming `plan` at `now` from `current` over `source` (a UdpUc or built-in
+    /// device; a built-in device just discards the messages, which still appear in the
+    /// log).
+    pub fn start(
+        now: Duration,
+        ctx: &DriverContext,
+        plan: &StreamPlan,
+        source: EgmSource,
+        current: &Joints,
+    ) -> Result<EgmStream, EgmError> {
+        let instruction = "EGMStreamStart";
+        check_options(instruction, &ctx.options)?;
+        let mut pattern = None;
+        let (device, peer, remote, filter) = match source {
+            EgmSource::Udp { device, transport } => {
+                let remote = transport.remote();
+                (
+                    device,
+                    Peer::Udp(transport),
+                    remote,
+                    ctx.options.source_filter,
+                )
+            }
+            EgmSource::Builtin { device, pattern: p } => {
+                pattern = Some(p);
+                (device, Peer::Builtin(None), BUILTIN_ADDR, SourceFilter::Any)
+            }
+            EgmSource::Signals { .. } | EgmSource::Seam { .. } => {
+                return Err(EgmError::BadSetup {
+                    instruction,
+                    detail: "a position stream needs a UdpUc setup (EGMSetupUC)".to_string(),
+                });
+            }
+        };
+        let mut config = EgmConfig::new(plan.mode, remote);
+        config.source_filter = filter;
+        config.sample_period = plan.sample_period;
+        config.comm_timeout = None;
+        config.encode = ctx.options.encode;
+        config.event_repeat = ctx.options.event_repeat;
+        config.limits = robot_limits(&ctx.robot);
+        let mut session = EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+            instruction,
+            detail: e.to_string(),
+        })?;
+        session.start(now);
+        let delay = DelayLine::new(ctx.options.servo_delay, ctx.options.tick, *current);
+        Ok(EgmStream {
+            name: plan.name.clone(),
+            device,
+            robot: ctx.robot.clone(),
+            tool: plan.tool,
+            wobj: plan.wobj.clone(),
+            session,
+            peer,
+            pattern,
+            buf: Vec::with_capacity(512),
+            delay,
+            servo_delay: ctx.options.servo_delay,
+            events: EventQueue::with_capacity(),
+            log: LogRing::new(&plan.name, ctx.options.log_capacity),
+        })
+    }
+
+    /// The identity's variable name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The device name.
+    pub fn device(&self) -> &str {
+        &self.device
+    }
+
+    /// One tick at `now` with the joints commanded this tick; `exec` is the program state
+    /// to report.
+    pub fn tick(&mut self, now: Duration, commanded: &Joints, exec: RapidExecState) -> StreamTick {
+        // Replies are not needed; read and discard them so the socket never fills up.
+        self.peer.receive(now, &mut self.session, &mut self.events);
+        while self.session.poll_reference().is_some() {}
+        let measured = self.delay.push(*commanded);
+        let pose = |q: &Joints| {
+            feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj)
+                .ok()
+                .map(|(pos, orient)| WirePose { pos, orient })
+                .unwrap_or(WirePose::IDENTITY)
+        };
+        let feedback = RobotFeedback {
+            joints: measured,
+            external: ExternalAxes::NONE,
+            pose: pose(&measured),
+            time: now,
+            planned_joints: *commanded,
+            planned_external: ExternalAxes::NONE,
+            planned_pose: pose(commanded),
+            planned_time: now.saturating_add(self.servo_delay),
+            motor_state: MotorState::On,
+            exec_state: exec,
+            mci_state: MciState::Stopped,
+            convergence_met: false,
+            utilization: 0.0,
+            move_index: None,
+            rapid_to_sensor: None,
+        };
+        let sent = self
+            .session
+            .poll_transmit_into(now, &feedback, &mut self.buf);
+        if sent {
+            if let Some(e) = self.peer.send(now, &self.buf, &mut self.session) {
+                self.events.push(e);
+            }
+            self.log.push(LogRow {
+                kind: LogKind::Stream,
+                send_time: now,
+                recv_time: None,
+                seqno: self.session.next_seqno().wrapping_sub(1),
+                reference: None,
+                feedback: measured,
+                state: "streaming",
+                utilization: 0.0,
+            });
+        }
+        forward_events(&mut self.session, &mut self.events);
+        StreamTick {
+            sent,
+            events: self.events.len(),
+        }
+    }
+
+    /// The next event.
+    pub fn poll_event(&mut self) -> Option<EgmEvent> {
+        self.events.pop()
+    }
+
+    /// The oldest log row.
+    pub fn pop_log(&mut self) -> Option<LogRow> {
+        self.log.pop()
+    }
+
+    /// The log ring.
+    pub fn log_mut(&mut self) -> &mut LogRing {
+        &mut self.log
+    }
+
+    /// `EgmRobot`s sent so far.
+    pub fn sent(&self) -> u64 {
+        self.session.stats().sent
+    }
+
+    /// Ends the stream and gives the device back, e.g. to an EGMRun that takes over the same
+    /// identity (its socket stays bound).
+    pub fn into_source(mut self) -> EgmSource {
+        self.session.stop();
+        match self.peer {
+            Peer::Udp(transport) => EgmSource::Udp {
+                device: self.device,
+                transport,
+            },
+            Peer::Builtin(_) => EgmSource::Builtin {
+                device: self.device,
+                pattern: self
+                    .pattern
+                    .unwrap_or(SensorPattern::Hold(crate::egm::EgmMode::Joint)),
+            },
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! The sans-IO motion core: robot time and clocks, trapezoidal profiles, the planner for
+//! MoveAbsJ/MoveJ/MoveL/MoveC with zones and corner paths, and the fixed-rate
+//! `MotionCore::tick(now)` that plays the planned samples under supervision.
+//!
+//! Nothing here sleeps, spawns threads, opens sockets or reads the operating system's clock;
+//! `controller::rt` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
+//!
+//! Design: every move is planned completely when it is queued (the inverse kinematics of every
+//! cycle of a linear move included), so errors surface before the robot moves and the cycle
+//! itself only copies preplanned samples, checks them and hands over into corner paths.
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+
+pub mod clock;
+pub mod core;
+pub mod event;
+pub mod executor;
+pub mod guidance;
+pub mod limits;
+pub mod planner;
+pub mod profile;
+pub mod segment;
+pub mod settings;
+pub mod state;
+
+pub use self::core::{EnqueueError, MotionCore};
+pub use clock::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
+pub use event::{InstrRef, MotionError, MotionEvent, PathPlace, Severity};
+pub use executor::Executor;
+pub use guidance::{ExternalGuidance, GuidanceStep};
+pub use planner::Planner;
+pub use settings::{AccSet, CoreConfig, MotionSettings, SingArea, VelSet};
+pub use state::{CoreMode, MotionState, Setpoint};

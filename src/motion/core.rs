@@ -1,0 +1,182 @@
+//! `MotionCore`: the planner and the executor in one sans-IO state machine, driven by
+//! `enqueue(command)` and `tick(now)`. Tests drive it by hand; the controller's real-time
+//! shell splits it into its two halves (planning on the caller's thread, cycles on the
+//! motion thread).
+
+use crate::robot::command::MotionCommand;
+use crate::robot::{JointsDeg, Robot, ToolData};
+
+use super::clock::RobotTime;
+use super::event::{InstrRef, MotionError, MotionEvent, Severity};
+use super::executor::Executor;
+use super::guidance::ExternalGuidance;
+use super::planner::Planner;
+use super::settings::{CoreConfig, MotionSettings};
+use super::state::{MotionState, Setpoint};
+
+/// Why a command was not queued.
+#[derive(Debug, thiserror::Error)]
+pub enum EnqueueError {
+    /// The queue is full: tick and try again. The command is handed back.
+    #[error("the motion queue is full")]
+    QueueFull(Box<MotionCommand>),
+    /// The command was refused before the robot moved (also recorded as an event).
+    #[error(transparent)]
+    Rejected(MotionError),
+}
+
+/// The motion core (see the module docs).
+#[derive(Debug)]
+pub struct MotionCore {
+    planner: Planner,
+    exec: Executor,
+}
+
+impl MotionCore {
+    /// A core for `robot` standing at `start` (the configuration is clamped to its supported
+    /// range, see [`CoreConfig::sanitized`]).
+    pub fn new(robot: Robot, config: CoreConfig, start: JointsDeg) -> MotionCore {
+        let config = config.sanitized();
+        MotionCore {
+            planner: Planner::new(robot.clone(), config.period, start),
+            exec: Executor::new(robot, &config, start),
+        }
+    }
+
+    /// Join a planner and an executor (see [`MotionCore::into_parts`]).
+    pub fn from_parts(planner: Planner, exec: Executor) -> MotionCore {
+        MotionCore { planner, exec }
+    }
+
+    /// Split into the planning half and the cycle half.
+    pub fn into_parts(self) -> (Planner, Executor) {
+        (self.planner, self.exec)
+    }
+
+    /// Plan `cmd` and queue it. Errors are found here, before the robot moves, and are also
+    /// recorded as events; warnings (a corner path that could not be built) only as events.
+    pub fn enqueue(&mut self, cmd: MotionCommand) -> Result<(), EnqueueError> {
+        while let Some(seg) = self.exec.take_done() {
+            self.planner.recycle(seg);
+        }
+        let instr = InstrRef {
+            id: cmd.id(),
+            name: cmd.name(),
+            source: cmd.source(),
+        };
+        let refuse = |exec: &mut Executor, error: MotionError| {
+            exec.log(Severity::Error, Some(instr), error.clone());
+            Err(EnqueueError::Rejected(error))
+        };
+        let state = self.exec.state();
+        if state.halted {
+            return refuse(&mut self.exec, MotionError::Halted);
+        }
+        if state.mode != super::state::CoreMode::Planned {
+            return refuse(&mut self.exec, MotionError::ExternalGuidance);
+        }
+        if !self.exec.has_space() {
+            return Err(EnqueueError::QueueFull(Box::new(cmd)));
+        }
+        if state.in_position() && state.setpoint.joints != self.planner.start() {
+            // The robot was moved by something else (guidance, a stop): plan from where it is.
+            self.planner.set_start(state.setpoint.joints);
+        }
+        match self.planner.plan(&cmd) {
+            Ok(planned) => {
+                for w in planned.warnings {
+                    self.exec.log(Severity::Warning, Some(instr), w);
+                }
+                match self.exec.push(planned.segment) {
+                    Ok(()) => Ok(()),
+                    // Unreachable: space was checked above. Hand the command back anyway.
+                    Err(seg) => {
+                        self.planner.recycle(seg);
+                        Err(EnqueueError::QueueFull(Box::new(cmd)))
+                    }
+                }
+            }
+            Err(e) => refuse(&mut self.exec, e),
+        }
+    }
+
+    /// One motion cycle at robot time `now`: no allocation, no lock, no I/O, no panic.
+    pub fn tick(&mut self, now: RobotTime) -> Setpoint {
+        self.exec.tick(now)
+    }
+
+    /// The executing half (for the shell's per-cycle hook).
+    pub fn executor_mut(&mut self) -> &mut Executor {
+        &mut self.exec
+    }
+
+    /// A snapshot of the state.
+    pub fn state(&self) -> MotionState {
+        self.exec.state()
+    }
+
+    /// True when another command fits in the queue.
+    pub fn has_space(&self) -> bool {
+        self.exec.has_space()
+    }
+
+    /// Take the oldest unread event.
+    pub fn take_event(&mut self) -> Option<MotionEvent> {
+        self.exec.take_event()
+    }
+
+    /// The modal settings for moves planned from now on.
+    pub fn settings(&self) -> &MotionSettings {
+        self.planner.settings()
+    }
+
+    /// Change the modal settings (`VelSet`, `AccSet`, `SingArea`) for moves queued from now on.
+    pub fn set_settings(&mut self, s: MotionSettings) {
+        self.planner.set_settings(s);
+    }
+
+    /// Stop now: drop queued and active moves, hold the position.
+    pub fn stop(&mut self) {
+        self.exec.clear();
+        self.planner.set_start(self.exec.setpoint().joints);
+    }
+
+    /// Leave the halted state after a motion error; planning restarts where the robot is.
+    pub fn recover(&mut self) {
+        self.exec.recover();
+        self.planner.set_start(self.exec.setpoint().joints);
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        self.planner.robot()
+    }
+
+    /// Hand the robot to external guidance (EGM); only at a stop point.
+    pub fn start_external(
+        &mut self,
+        guidance: Box<dyn ExternalGuidance>,
+        tool: ToolData,
+        instr: Option<InstrRef>,
+    ) -> Result<(), MotionError> {
+        self.exec.start_external(guidance, tool, instr)
+    }
+
+    /// The running external guidance as its concrete type (see
+    /// [`Executor::guidance_as`]).
+    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
+        self.exec.guidance_as::<T>()
+    }
+
+    /// Take a guidance object that finished by itself.
+    pub fn take_retired_guidance(&mut self) -> Option<Box<dyn ExternalGuidance>> {
+        self.exec.take_retired()
+    }
+
+    /// End external guidance; planning restarts where the robot is.
+    pub fn stop_external(&mut self) -> Option<Box<dyn ExternalGuidance>> {
+        let g = self.exec.stop_external();
+        self.planner.set_start(self.exec.setpoint().joints);
+        g
+    }
+}

@@ -1,0 +1,259 @@
+//! Motion errors and the event log entries of the motion core, with their ABB event numbers
+//! and the RAPID errors a program can catch.
+
+use std::fmt;
+
+use crate::robot::{ConfData, KinError};
+use crate::source::Span;
+
+use super::clock::RobotTime;
+
+/// Which RAPID instruction a segment, an event or a trace row belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct InstrRef {
+    /// The command id the interpreter gave it.
+    pub id: u64,
+    /// `MoveJ`, `MoveL`, …
+    pub name: &'static str,
+    /// The RAPID instruction.
+    pub source: Option<Span>,
+}
+
+/// Where on a move the planner found a problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PathPlace {
+    /// At the programmed target.
+    Target,
+    /// At the circle point of a MoveC.
+    CirPoint,
+    /// On the way, at this share of the path (0…1).
+    Along(f64),
+    /// In the corner path towards this move.
+    Corner,
+    /// Found by the per-cycle supervision while moving.
+    Cycle,
+}
+
+impl fmt::Display for PathPlace {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PathPlace::Target => f.write_str("at the target"),
+            PathPlace::CirPoint => f.write_str("at the circle point"),
+            PathPlace::Along(s) => write!(f, "at {:.0} % of the path", s * 100.0),
+            PathPlace::Corner => f.write_str("in the corner path"),
+            PathPlace::Cycle => f.write_str("while moving"),
+        }
+    }
+}
+
+/// Why the motion core refused, stopped or warned about a move.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MotionError {
+    /// A pose is unreachable, an axis leaves its range, or the path meets a singularity.
+    #[error("{error} ({place})")]
+    Kinematics {
+        /// What the kinematics reported.
+        error: KinError,
+        /// Where.
+        place: PathPlace,
+    },
+    /// ConfL\On: the straight path ends in another arm configuration than the programmed one.
+    #[error(
+        "the linear path reaches the target in configuration {reached}, not the programmed {wanted} (use ConfL\\Off, MoveJ, or correct the robconf)"
+    )]
+    ConfigurationChanged {
+        /// The programmed confdata.
+        wanted: ConfData,
+        /// What the path ends in.
+        reached: ConfData,
+    },
+    /// MoveC: start, circle point and target do not define a circle.
+    #[error("circle uncertain: {reason}")]
+    CircleUncertain {
+        /// What is wrong with the three points.
+        reason: &'static str,
+    },
+    /// A fly-by point became a stop point because the next move was not planned in time
+    /// (or its corner path could not be built).
+    #[error("corner path failure: {reason}; the fly-by point became a stop point")]
+    CornerPathFailure {
+        /// Why.
+        reason: &'static str,
+    },
+    /// An axis would exceed its maximum speed (per-cycle supervision).
+    #[error("joint {joint} speed {speed:.1}°/s exceeds its maximum {max:.1}°/s")]
+    JointSpeed {
+        /// Axis number, 1-based.
+        joint: usize,
+        /// The speed asked for (deg/s).
+        speed: f64,
+        /// The model's maximum (deg/s).
+        max: f64,
+    },
+    /// An argument of the move is not usable.
+    #[error("invalid {what}: {value}")]
+    InvalidData {
+        /// Which argument.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A feature rapidvc does not implement.
+    #[error("{what} is not supported by rapidvc")]
+    NotSupported {
+        /// What.
+        what: &'static str,
+    },
+    /// The motion core stopped after an error and takes no moves until it is recovered.
+    #[error("motion is stopped after an error")]
+    Halted,
+    /// The robot is under external guidance (EGM); planned moves wait until it ends.
+    #[error("the robot is under external guidance")]
+    ExternalGuidance,
+    /// External guidance may only start at a stop point.
+    #[error("external guidance must start at a fine point (the robot is moving)")]
+    NotAtStopPoint,
+}
+
+impl MotionError {
+    /// The ABB event log number and title where one is known (robot.md §10). Events without a
+    /// verified ABB number return `None`.
+    ///
+    /// * kinematics: [`KinError::event`] (50050, 50027, 50026);
+    /// * a configuration change under ConfL\On: 50050 "Position outside reach" (as
+    ///   `KinError::ConfigurationUnreachable`);
+    /// * corner path failure: 50024;
+    /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**).
+    pub fn event(&self) -> Option<(u32, &'static str)> {
+        match self {
+            MotionError::Kinematics { error, .. } => Some(error.event()),
+            MotionError::ConfigurationChanged { .. } => Some((50050, "Position outside reach")),
+            MotionError::CircleUncertain { .. } => Some((50063, "Circle uncertain")),
+            MotionError::CornerPathFailure { .. } => Some((50024, "Corner path failure")),
+            MotionError::JointSpeed { .. } => None,
+            MotionError::InvalidData { .. }
+            | MotionError::NotSupported { .. }
+            | MotionError::Halted
+            | MotionError::ExternalGuidance
+            | MotionError::NotAtStopPoint => None,
+        }
+    }
+
+    /// The RAPID error an `ERROR` handler can catch, where one applies.
+    pub fn rapid_error_name(&self) -> Option<&'static str> {
+        match self {
+            MotionError::Kinematics { error, .. } => Some(error.rapid_error_name()),
+            MotionError::ConfigurationChanged { .. } | MotionError::JointSpeed { .. } => {
+                Some("ERR_ROBLIMIT")
+            }
+            _ => None,
+        }
+    }
+
+    /// A short title for logs: the ABB title when there is one.
+    pub fn title(&self) -> &'static str {
+        match self.event() {
+            Some((_, title)) => title,
+            None => match self {
+                MotionError::JointSpeed { .. } => "Joint speed error",
+                MotionError::InvalidData { .. } => "Invalid motion data",
+                MotionError::NotSupported { .. } => "Not supported",
+                MotionError::Halted => "Motion stopped",
+                MotionError::ExternalGuidance => "External guidance active",
+                MotionError::NotAtStopPoint => "Not in a stop point",
+                _ => "Motion error",
+            },
+        }
+    }
+}
+
+/// How serious an event is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    /// For information.
+    Info,
+    /// The robot went on (e.g. a fly-by point became a stop point).
+    Warning,
+    /// The move was refused or the robot stopped.
+    Error,
+}
+
+/// One entry of the motion core's event log.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionEvent {
+    /// When (robot time).
+    pub time: RobotTime,
+    /// How serious.
+    pub severity: Severity,
+    /// The instruction concerned.
+    pub instr: Option<InstrRef>,
+    /// What happened.
+    pub error: MotionError,
+}
+
+impl fmt::Display for MotionEvent {
+    /// `50050 Position outside reach: … (MoveL #12)`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some((number, title)) = self.error.event() {
+            write!(f, "{number} {title}: {}", self.error)?;
+        } else {
+            write!(f, "{}: {}", self.error.title(), self.error)?;
+        }
+        if let Some(i) = &self.instr {
+            write!(f, " ({} #{})", i.name, i.id)?;
+        }
+        Ok(())
+    }
+}
+
+/// A bounded event log that never allocates once created: when it is full, new events are
+/// counted and dropped (old ones are kept, since the first error is the one that matters).
+#[derive(Debug)]
+pub struct EventLog {
+    items: std::collections::VecDeque<MotionEvent>,
+    capacity: usize,
+    dropped: u64,
+    total: u64,
+}
+
+impl EventLog {
+    /// A log holding up to `capacity` events.
+    pub fn with_capacity(capacity: usize) -> EventLog {
+        EventLog {
+            items: std::collections::VecDeque::with_capacity(capacity.max(1)),
+            capacity: capacity.max(1),
+            dropped: 0,
+            total: 0,
+        }
+    }
+
+    /// Record an event (dropped and counted when the log is full).
+    pub fn push(&mut self, e: MotionEvent) {
+        self.total = self.total.saturating_add(1);
+        if self.items.len() < self.capacity {
+            self.items.push_back(e);
+        } else {
+            self.dropped = self.dropped.saturating_add(1);
+        }
+    }
+
+    /// Take the oldest event.
+    pub fn pop(&mut self) -> Option<MotionEvent> {
+        self.items.pop_front()
+    }
+
+    /// The events not yet taken, oldest first.
+    pub fn iter(&self) -> impl Iterator<Item = &MotionEvent> {
+        self.items.iter()
+    }
+
+    /// Events dropped because the log was full.
+    pub fn dropped(&self) -> u64 {
+        self.dropped
+    }
+
+    /// Events ever recorded (taken, pending or dropped).
+    pub fn total(&self) -> u64 {
+        self.total
+    }
+}

@@ -1,0 +1,424 @@
+//! The executing half of the motion core: plays planned segments one sample per cycle, hands
+//! over into corner paths, supervises axis ranges and speeds, and runs external guidance.
+//!
+//! [`Executor::tick`] is the real-time path: no allocation, no lock, no I/O, no panic. Queues
+//! and the event log are preallocated; finished segments are parked for recycling instead of
+//! being dropped.
+
+use std::collections::VecDeque;
+use std::time::Duration;
+
+use crate::robot::{JointsDeg, Robot, ToolData};
+
+use super::clock::RobotTime;
+use super::event::{EventLog, InstrRef, MotionError, MotionEvent, PathPlace, Severity};
+use super::guidance::{ExternalGuidance, GuidanceStep};
+use super::limits::{self, SPEED_SUPERVISION_SLACK};
+use super::segment::{Sample, Segment};
+use super::settings::CoreConfig;
+use super::state::{CoreMode, MotionState, Setpoint};
+
+/// The segment being played.
+#[derive(Debug)]
+struct Active {
+    seg: Segment,
+    /// Playing the corner samples (else the segment's own samples).
+    in_corner: bool,
+    /// Next sample index in the current list.
+    idx: usize,
+}
+
+/// External guidance and what it needs each cycle.
+struct External {
+    guidance: Box<dyn ExternalGuidance>,
+    tool: ToolData,
+    instr: Option<InstrRef>,
+}
+
+/// One output of [`Executor::next_sample`].
+struct Out {
+    sample: Sample,
+    /// The last sample of a stop point.
+    at_stop_point: bool,
+}
+
+/// The executing half of the motion core (see the module docs).
+pub struct Executor {
+    robot: Robot,
+    period: Duration,
+    dt: f64,
+    capacity: usize,
+    queue: VecDeque<Segment>,
+    active: Option<Active>,
+    done: VecDeque<Segment>,
+    events: EventLog,
+    external: Option<External>,
+    retired: Option<Box<dyn ExternalGuidance>>,
+    setpoint: Setpoint,
+    last_done: Option<InstrRef>,
+    halted: bool,
+}
+
+impl std::fmt::Debug for Executor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Executor")
+            .field("setpoint", &self.setpoint)
+            .field("queued", &self.queue.len())
+            .field("halted", &self.halted)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Executor {
+    /// An idle executor holding the robot at `start`.
+    pub fn new(robot: Robot, config: &CoreConfig, start: JointsDeg) -> Executor {
+        let config = config.sanitized();
+        let capacity = config.queue_capacity.max(1);
+        let tcp = robot.tcp_world(&start, &ToolData::tool0());
+        Executor {
+            period: config.period,
+            dt: config.period.as_secs_f64(),
+            capacity,
+            queue: VecDeque::with_capacity(capacity),
+            active: None,
+            // Every segment in existence fits: queued, active, and parked.
+            done: VecDeque::with_capacity(capacity + 2),
+            events: EventLog::with_capacity(config.event_capacity),
+            external: None,
+            retired: None,
+            setpoint: Setpoint {
+                time: RobotTime::ZERO,
+                tick: 0,
+                joints: start,
+                tcp,
+                speed: 0.0,
+                standstill: true,
+                instr: None,
+            },
+            last_done: None,
+            halted: false,
+            robot,
+        }
+    }
+
+    /// The motion cycle.
+    pub fn period(&self) -> Duration {
+        self.period
+    }
+
+    /// True when another segment fits in the queue.
+    pub fn has_space(&self) -> bool {
+        self.queue.len() < self.capacity
+    }
+
+    /// Queue a planned segment; gives it back when the queue is full (unboxed: boxing would
+    /// allocate).
+    #[allow(clippy::result_large_err)]
+    pub fn push(&mut self, seg: Segment) -> Result<(), Segment> {
+        if self.has_space() {
+            self.queue.push_back(seg);
+            Ok(())
+        } else {
+            Err(seg)
+        }
+    }
+
+    /// Take a finished segment for recycling (outside the cycle).
+    pub fn take_done(&mut self) -> Option<Segment> {
+        self.done.pop_front()
+    }
+
+    /// Take the oldest unread event.
+    pub fn take_event(&mut self) -> Option<MotionEvent> {
+        self.events.pop()
+    }
+
+    /// Record an event (used by the core for planning errors and warnings).
+    pub fn log(&mut self, severity: Severity, instr: Option<InstrRef>, error: MotionError) {
+        self.events.push(MotionEvent {
+            time: self.setpoint.time,
+            severity,
+            instr,
+            error,
+        });
+    }
+
+    /// The last setpoint.
+    pub fn setpoint(&self) -> &Setpoint {
+        &self.setpoint
+    }
+
+    /// A snapshot of the state.
+    pub fn state(&self) -> MotionState {
+        MotionState {
+            setpoint: self.setpoint,
+            pending: self.queue.len(),
+            moving: self.active.is_some(),
+            last_done: self.last_done,
+            halted: self.halted,
+            mode: if self.external.is_some() {
+                CoreMode::External
+            } else {
+                CoreMode::Planned
+            },
+            events_total: self.events.total(),
+        }
+    }
+
+    /// True after a motion error, until [`Executor::recover`].
+    pub fn is_halted(&self) -> bool {
+        self.halted
+    }
+
+    /// Leave the halted state; the robot stays where it stopped.
+    pub fn recover(&mut self) {
+        self.halted = false;
+    }
+
+    /// Stop at once: drop every queued and active move (kept for recycling) and hold.
+    pub fn clear(&mut self) {
+        if let Some(a) = self.active.take() {
+            self.park(a.seg);
+        }
+        while let Some(s) = self.queue.pop_front() {
+            self.park(s);
+        }
+    }
+
+    fn park(&mut self, seg: Segment) {
+        // `done` has room for every segment that exists; if a caller never recycles, the
+        // oldest parked segment is dropped rather than growing the buffer.
+        if self.done.len() == self.done.capacity() {
+            self.done.pop_front();
+        }
+        self.done.push_back(seg);
+    }
+
+    /// Hand the robot to external guidance. Only at a stop point: nothing queued or moving.
+    pub fn start_external(
+        &mut self,
+        guidance: Box<dyn ExternalGuidance>,
+        tool: ToolData,
+        instr: Option<InstrRef>,
+    ) -> Result<(), MotionError> {
+        if self.halted {
+            return Err(MotionError::Halted);
+        }
+        if self.external.is_some() {
+            return Err(MotionError::ExternalGuidance);
+        }
+        if self.active.is_some() || !self.queue.is_empty() {
+            return Err(MotionError::NotAtStopPoint);
+        }
+        self.external = Some(External {
+            guidance,
+            tool,
+            instr,
+        });
+        Ok(())
+    }
+
+    /// End external guidance now (the robot holds); returns the guidance object.
+    pub fn stop_external(&mut self) -> Option<Box<dyn ExternalGuidance>> {
+        self.external
+            .take()
+            .map(|e| e.guidance)
+            .or_else(|| self.retired.take())
+    }
+
+    /// The running external guidance, as its concrete type (between cycles: feed it the
+    /// newest reference, read its outputs).
+    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
+        let g: &mut dyn std::any::Any = self.external.as_mut()?.guidance.as_mut();
+        g.downcast_mut::<T>()
+    }
+
+    /// Take a guidance object that finished by itself (to drop it outside the cycle).
+    pub fn take_retired(&mut self) -> Option<Box<dyn ExternalGuidance>> {
+        self.retired.take()
+    }
+
+    /// One motion cycle at robot time `now`.
+    pub fn tick(&mut self, now: RobotTime) -> Setpoint {
+        let prev = self.setpoint;
+        let (target, at_stop_point, instr, tool_tcp) = if self.halted {
+            (None, true, None, None)
+        } else if let Some(ext) = self.external.as_mut() {
+            match ext.guidance.step(now, &prev.joints) {
+                GuidanceStep::MoveTo(q) => {
+                    let tcp = self.robot.tcp_world(&q, &ext.tool);
+                    (Some(q), false, ext.instr, Some(tcp))
+                }
+                GuidanceStep::Hold => (None, false, ext.instr, None),
+                GuidanceStep::Finished => {
+                    if let Some(e) = self.external.take() {
+                        self.retired = Some(e.guidance);
+                    }
+                    (None, true, None, None)
+                }
+            }
+        } else {
+            match self.next_sample() {
+                Some(out) => {
+                    let instr = self.active_instr().or(self.last_done);
+                    (
+                        Some(out.sample.q),
+                        out.at_stop_point,
+                        instr,
+                        Some(out.sample.tcp),
+                    )
+                }
+                None => (None, true, None, None),
+            }
+        };
+        let mut sp = Setpoint {
+            time: now,
+            tick: prev.tick.wrapping_add(1),
+            joints: prev.joints,
+            tcp: prev.tcp,
+            speed: 0.0,
+            standstill: at_stop_point,
+            instr,
+        };
+        if let (Some(q), Some(tcp)) = (target, tool_tcp) {
+            match self.supervise(&prev.joints, &q) {
+                Ok(()) => {
+                    sp.joints = q;
+                    sp.tcp = tcp;
+                    sp.speed =
+                        (tcp.translation.vector - prev.tcp.translation.vector).norm() / self.dt;
+                }
+                Err(error) => self.fault(instr, error),
+            }
+        }
+        if self.halted {
+            sp.standstill = true;
+            sp.speed = 0.0;
+        }
+        self.setpoint = sp;
+        sp
+    }
+
+    /// Per-cycle supervision: finite values inside the axis ranges, axis speeds within limits.
+    fn supervise(&self, from: &JointsDeg, to: &JointsDeg) -> Result<(), MotionError> {
+        self.robot
+            .check_limits(to)
+            .map_err(|error| MotionError::Kinematics {
+                error,
+                place: PathPlace::Cycle,
+            })?;
+        let model = self.robot.model();
+        let (ratio, axis) = limits::step_speed_ratio(from, to, self.dt, &model.max_speed);
+        if ratio > 1.0 + SPEED_SUPERVISION_SLACK {
+            let max = model.max_speed.get(axis).copied().unwrap_or(f64::NAN);
+            return Err(MotionError::JointSpeed {
+                joint: axis + 1,
+                speed: ratio * max,
+                max,
+            });
+        }
+        Ok(())
+    }
+
+    /// Stop everything after a supervision error.
+    fn fault(&mut self, instr: Option<InstrRef>, error: MotionError) {
+        self.halted = true;
+        self.clear();
+        if let Some(e) = self.external.take() {
+            self.retired = Some(e.guidance);
+        }
+        self.log(Severity::Error, instr, error);
+    }
+
+    fn active_instr(&self) -> Option<InstrRef> {
+        self.active.as_ref().map(|a| a.seg.instr)
+    }
+
+    /// The next sample of the planned moves, handing over into corner paths and finishing
+    /// segments as they end. `None` when there is nothing to play.
+    fn next_sample(&mut self) -> Option<Out> {
+        // Each pass either returns or makes progress (a segment started, a corner ended, or a
+        // segment finished), so this terminates within a few passes.
+        for _ in 0..(4 + 2 * self.capacity) {
+            let Some(act) = self.active.as_mut() else {
+                let mut seg = self.queue.pop_front()?;
+                // Starting from rest: a corner planned into this segment is void.
+                seg.corner = None;
+                self.active = Some(Active {
+                    seg,
+                    in_corner: false,
+                    idx: 0,
+                });
+                continue;
+            };
+            if act.in_corner {
+                if let Some(s) = act.seg.corner_samples.get(act.idx) {
+                    act.idx += 1;
+                    return Some(Out {
+                        sample: *s,
+                        at_stop_point: false,
+                    });
+                }
+                act.in_corner = false;
+                act.idx = act.seg.corner.map_or(0, |c| c.resume_at);
+                continue;
+            }
+            let handoff = self
+                .queue
+                .front()
+                .and_then(|n| n.corner)
+                .is_some_and(|c| c.enter_at == act.idx);
+            if handoff {
+                if let Some(next) = self.queue.pop_front()
+                    && let Some(old) = self.active.replace(Active {
+                        seg: next,
+                        in_corner: true,
+                        idx: 0,
+                    })
+                {
+                    self.last_done = Some(old.seg.instr);
+                    self.park(old.seg);
+                }
+                continue;
+            }
+            if let Some(s) = act.seg.samples.get(act.idx).copied() {
+                act.idx += 1;
+                let last = act.idx >= act.seg.samples.len();
+                let fine = act.seg.fine;
+                if last {
+                    self.finish_active();
+                }
+                return Some(Out {
+                    sample: s,
+                    at_stop_point: last && fine,
+                });
+            }
+            self.finish_active();
+        }
+        None
+    }
+
+    /// The active segment has played its last sample.
+    fn finish_active(&mut self) {
+        let Some(act) = self.active.take() else {
+            return;
+        };
+        let instr = act.seg.instr;
+        if act.seg.flyby {
+            let reason = match self.queue.front() {
+                None => Some("the next move was not planned in time"),
+                Some(n) if n.corner.is_some() => Some("the next move was planned too late"),
+                Some(_) => None,
+            };
+            if let Some(reason) = reason {
+                self.log(
+                    Severity::Warning,
+                    Some(instr),
+                    MotionError::CornerPathFailure { reason },
+                );
+            }
+        }
+        self.last_done = Some(instr);
+        self.park(act.seg);
+    }
+}
