@@ -177,14 +177,13 @@ impl Interp {
                 crate::ir::Root::Global(g) => self.globals.get(g as usize),
                 crate::ir::Root::Ref(_) => None,
             };
-            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(x)) {
-                if a.rank == 1
-                    && i >= 1
-                    && i as u32 <= a.dims[0]
-                    && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
-                {
-                    return *v;
-                }
+            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(x))
+                && a.rank == 1
+                && i >= 1
+                && i as u32 <= a.dims[0]
+                && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
+            {
+                return *v;
             }
         }
         match self.load_f32(p, pl) {

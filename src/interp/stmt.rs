@@ -170,15 +170,14 @@ impl Interp {
                 crate::ir::Root::Global(g) => self.globals.get_mut(g as usize),
                 crate::ir::Root::Ref(_) => None,
             };
-            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(ix)) {
-                if a.rank == 1
-                    && i >= 1
-                    && i as u32 <= a.dims[0]
-                    && let Some(Value::Num(v)) = a.data.get_mut((i - 1) as usize)
-                {
-                    *v = x;
-                    return Ok(());
-                }
+            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(ix))
+                && a.rank == 1
+                && i >= 1
+                && i as u32 <= a.dims[0]
+                && let Some(Value::Num(v)) = a.data.get_mut((i - 1) as usize)
+            {
+                *v = x;
+                return Ok(());
             }
         }
         self.store(p, place, Value::Num(x))
