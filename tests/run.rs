@@ -69,6 +69,25 @@ fn golden_multi_module_runs() {
     }
 }
 
+/// The EGM manual's programs pass the semantic pass (`check` without `--syntax`), as a
+/// folder of independent programs and one by one.
+#[test]
+fn manual_programs_check_clean() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (code, stdout, stderr) = run_in(root, &["check", "programs/manual"]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    assert!(stderr.contains(" 0 errors"), "{stderr}");
+    for f in [
+        "position_guidance_udpuc.mod",
+        "position_guidance_signals.mod",
+        "path_correction.mod",
+    ] {
+        let path = format!("programs/manual/{f}");
+        let (code, stdout, stderr) = run_in(root, &["check", &path]);
+        assert_eq!(code, 0, "{path}: {stdout}{stderr}");
+    }
+}
+
 #[test]
 fn persistents_survive_between_runs() {
     let dir = std::env::temp_dir().join(format!("rapidvc-pers-{}", std::process::id()));
