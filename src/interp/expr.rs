@@ -223,7 +223,7 @@ impl Interp {
     /// `x MOD k` / `x DIV k` with a constant integer `k` ≠ 0.
     #[inline(never)]
     fn nf_mod_k(&mut self, p: &Program, a: &Expr, k: i32, is_mod: bool, span: Span) -> f32 {
-        let x = match self.num_leaf(a) {
+        let x = match self.num_operand(a) {
             Some(x) => x,
             None => self.nf(p, a),
         };
@@ -243,14 +243,14 @@ impl Interp {
 
     #[inline(never)]
     fn nf_binary(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> f32 {
-        let x = match self.num_leaf(a) {
+        let x = match self.num_operand(a) {
             Some(x) => x,
             None => self.nf(p, a),
         };
         if x.is_nan() {
             return x;
         }
-        let y = match self.num_leaf(b) {
+        let y = match self.num_operand(b) {
             Some(y) => y,
             None => self.nf(p, b),
         };
@@ -428,6 +428,33 @@ impl Interp {
             },
             _ => None,
         }
+    }
+
+    /// A `num` operand: a leaf, or `a{i}` of a local or global 1-D array with a leaf index,
+    /// without a call.
+    #[inline(always)]
+    fn num_operand(&self, e: &Expr) -> Option<f32> {
+        if let ExprKind::Load(pl) = &e.kind
+            && let [crate::ir::PathOp::Index(es)] = &*pl.path
+            && let [ie] = &**es
+        {
+            let arr = match pl.root {
+                crate::ir::Root::Local(s) => self.stack.get(self.bp + s as usize),
+                crate::ir::Root::Global(g) => self.globals.get(g as usize),
+                crate::ir::Root::Ref(_) => None,
+            };
+            if let (Some(Value::Array(a)), Some(i)) =
+                (arr, self.num_leaf(ie).and_then(super::value::f32_int))
+                && a.rank == 1
+                && i >= 1
+                && i as u32 <= a.dims[0]
+                && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
+            {
+                return Some(*v);
+            }
+            return None;
+        }
+        self.num_leaf(e)
     }
 
     #[inline]
