@@ -17,7 +17,6 @@
 
 pub mod builtins;
 mod call;
-pub mod errnum;
 pub mod error;
 mod expr;
 pub mod host;
@@ -32,6 +31,7 @@ use std::sync::Arc;
 
 use crate::ir::{GlobalOrigin, Program, RoutineId, RoutineKind, Storage};
 use crate::source::Span;
+pub use crate::ir::errnum;
 pub use builtins::{NativeFn, Registry};
 pub use error::{ErrorKind, RuntimeError, StackEntry, Unwind};
 pub use host::{Host, HostError, Output, VirtualHost};

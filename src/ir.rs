@@ -2,6 +2,7 @@
 //! calls point at routines or natives by index), types are checked, spans are kept for
 //! run-time errors. Produced by `sema`, consumed by `interp`.
 
+pub mod errnum;
 pub mod sig;
 pub mod types;
 

@@ -4,7 +4,7 @@
 use super::error::SemaErrorKind as K;
 use super::{Checker, Env};
 use crate::ast::{self, ModuleItem, ParamMode, RoutineKind as AstKind, Storage};
-use crate::interp::errnum;
+use crate::ir::errnum;
 use crate::ir::{
     Block, Field, Global, GlobalId, GlobalOrigin, ModuleId, ParamInfo, ParamSlot, Routine,
     RoutineId, RoutineKind, Ty, TypeId, TypeKind,
