@@ -53,11 +53,13 @@ use super::{Condition, ControllerError, ControllerHandle};
 
 mod guidance;
 mod hook;
+mod host;
 mod logger;
 
 use guidance::{EgmGuidance, RunControl};
 pub use hook::EgmHook;
 use hook::{NamedEvent, Shared, StreamSlot};
+pub use host::{EgmParts, host_error};
 use logger::Logger;
 
 /// Capacity of the event channel from the cycle hook.

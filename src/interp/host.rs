@@ -24,6 +24,9 @@ use std::sync::Arc;
 use super::errnum;
 use crate::io::{IoError, SignalTable};
 
+mod egm;
+pub use egm::{EgmHost, EgmRun};
+
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Output {
@@ -95,6 +98,12 @@ pub trait Host {
 
     /// Set an output signal (or simulate an input).
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError>;
+
+    /// The EGM capability, when this controller has one (the EGM instructions fail with
+    /// "not supported by this controller" otherwise).
+    fn egm(&mut self) -> Option<&mut dyn EgmHost> {
+        None
+    }
 }
 
 /// A callback that receives program output.
