@@ -245,10 +245,18 @@ impl Host for ControllerHost {
         let start = self.state_checked()?;
         let now = self.now();
         if beyond_limit && now >= target {
-            return Err(HostError::fatal(format!(
-                "the program waits beyond the virtual time limit of {target} s \
-                 (nothing in a virtual run can end this wait; use --max-time to raise it)"
-            )));
+            let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
+            return Err(HostError::fatal(if realtime {
+                format!(
+                    "the program waits beyond the time limit of {target} s \
+                     (use --max-time to raise it)"
+                )
+            } else {
+                format!(
+                    "the program waits beyond the virtual time limit of {target} s \
+                     (nothing in a virtual run can end this wait; use --max-time to raise it)"
+                )
+            }));
         }
         if target <= now {
             return Ok(now);
