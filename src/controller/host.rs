@@ -427,3 +427,6 @@ fn set_id(cmd: &mut MotionCommand, id: u64) {
         MotionCommand::MoveC(m) => m.args.id = id,
     }
 }
+
+#[cfg(test)]
+mod tests;
