@@ -37,6 +37,8 @@ pub struct ControllerHost {
     modes: MotionModes,
     /// Id of the last move handed to the controller (ids start at 1).
     last_id: u64,
+    /// Id of the last move the controller accepted (refused moves never run).
+    last_accepted: u64,
     /// Moves up to this id were dropped when the robot stopped on an error: waits for them
     /// are over.
     void_up_to: u64,
@@ -70,6 +72,7 @@ impl ControllerHost {
             io: VirtualHost::new(),
             modes: MotionModes::default(),
             last_id: 0,
+            last_accepted: 0,
             void_up_to: 0,
             submitted: 0,
             errors: Vec::new(),
@@ -214,7 +217,7 @@ impl ControllerHost {
 
     /// True when every move handed to the controller is complete (or was dropped).
     fn all_done(&self, st: &MotionState) -> bool {
-        self.last_id <= self.void_up_to || st.done(self.last_id)
+        self.last_accepted <= self.void_up_to || st.done(self.last_accepted)
     }
 }
 
@@ -310,6 +313,7 @@ impl Host for ControllerHost {
         match result {
             Ok(()) => {
                 self.submitted += 1;
+                self.last_accepted = id;
                 Ok(id)
             }
             Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {

@@ -21,5 +21,10 @@ MODULE zones
     MoveL p10, v500, fine, tool0;
     TPWrite "reached p10 (fine) at " \Num:=ClkRead(clk);
     TPWrite "  CPos " \Pos:=CPos();
+    ! \Conc: even at a fine point the program goes on at once.
+    MoveL \Conc, p20, v1000, fine, tool0;
+    TPWrite "MoveL \\Conc, p20 fine queued at " \Num:=ClkRead(clk);
+    WaitRob \InPos;
+    TPWrite "in position at " \Num:=ClkRead(clk);
   ENDPROC
 ENDMODULE
