@@ -126,6 +126,8 @@ fn refused_moves_and_limits() {
         e.message.starts_with("50027 Joint out of range: joint 3"),
         "{e}"
     );
+    // A refused move never runs: the robot is in position.
+    assert!(h.motion_reached(MotionWait::InPos).unwrap());
     // Waiting past --max-time.
     assert_eq!(h.wait_until(5.0).unwrap(), 2.0);
     let e = h.wait_until(5.0).unwrap_err();
