@@ -310,10 +310,12 @@ impl Host for ControllerHost {
         set_id(&mut cmd, id);
         let result = self.ctl()?.submit(cmd);
         self.pump_events();
+        if result.is_ok() {
+            self.last_accepted = id;
+        }
         match result {
             Ok(()) => {
                 self.submitted += 1;
-                self.last_accepted = id;
                 Ok(id)
             }
             Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
