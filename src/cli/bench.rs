@@ -1,4 +1,5 @@
-//! `rapidvc bench virtual|realtime`: measure the motion core. `virtual` runs minutes of mixed
+//! `rapidvc bench virtual|realtime|egm`: measure the motion core (and EGM: see
+//! [`egm`]). `virtual` runs minutes of mixed
 //! MoveJ/MoveL in virtual time and reports the real-time factor (simulated seconds per wall
 //! second); `realtime` runs the motion thread at its fixed period while busy-loop processes
 //! load every core, and prints the distribution of the cycle-period error.
@@ -19,6 +20,8 @@ use crate::robot::command::{
 use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
 
 use super::robots::RobotArg;
+
+mod egm;
 
 /// Arguments of `rapidvc bench`.
 #[derive(Debug, clap::Args)]
@@ -42,6 +45,16 @@ pub enum BenchKind {
         /// Robot model.
         #[arg(long, value_name = "NAME", default_value = "IRB 2600-12/1.85")]
         robot: RobotArg,
+    },
+    /// EGM with an external sensor over loopback: loopback round trip, cycle-period jitter
+    /// of a real-time EGM run, controller turnaround, lockstep speed-up.
+    Egm {
+        /// Real-time run length in seconds (the lockstep run covers the same robot time).
+        #[arg(long, default_value_t = 20.0)]
+        seconds: f64,
+        /// Do not ask for SCHED_FIFO priority.
+        #[arg(long)]
+        no_priority: bool,
     },
     /// Real-time cycle jitter under load: histogram of |period − nominal|.
     Realtime {
@@ -74,6 +87,10 @@ pub fn run(args: BenchArgs) -> ExitCode {
             no_priority,
             spin_us,
         } => bench_realtime(seconds, load, no_priority, Duration::from_micros(spin_us)),
+        BenchKind::Egm {
+            seconds,
+            no_priority,
+        } => egm::bench_egm(seconds, no_priority),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

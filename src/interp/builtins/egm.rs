@@ -21,7 +21,7 @@ use crate::egm::types::EgmMode;
 use crate::interp::NArg;
 use crate::interp::errnum;
 use crate::interp::error::{ErrorKind, Exec, Unwind};
-use crate::interp::host::{EgmHost, EgmRun, HostError};
+use crate::interp::host::{EgmHost, EgmRun, HostError, MotionWait};
 use crate::interp::place::AbsRoot;
 use crate::interp::value::Value;
 use crate::io::{SignalId, SignalKind};
@@ -533,6 +533,8 @@ fn egm_act_move(cx: &mut Ctx<'_>) -> Exec<Value> {
 /// here: `ERR_UDPUC_COMM` is catchable).
 fn start_and_wait(cx: &mut Ctx<'_>, id: String, run: EgmRun) -> Exec<Value> {
     let span = cx.span;
+    // The robot must stand in the fine point the last move ended in (also after `\Conc`).
+    super::motion::wait_for(cx, MotionWait::InPos)?;
     let no_wait = run.args().no_wait_cond;
     with_egm(cx, |h| h.egm_run(&id, &run, span))?;
     if !no_wait {
