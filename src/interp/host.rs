@@ -27,8 +27,13 @@
 //! `ERR_OUTSIDE_REACH`) and a message that starts with the ABB event number and title, so
 //! `ERROR` handlers can take them and unhandled ones point at the instruction.
 //!
-//! EGM (issue 5) plugs in the same way: capability methods with defaults that fail clearly,
-//! natives in `interp/builtins/egm.rs`.
+//! # EGM
+//!
+//! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM
+//! instructions then stop the program with "… is not supported by this controller"). The
+//! natives in `interp/builtins/egm.rs` fill the registry's request types from RAPID values
+//! and name identities by their variable; `controller::egm` implements the capability for
+//! any controller-backed host.
 
 use std::fmt;
 use std::sync::Arc;
