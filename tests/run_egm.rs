@@ -179,6 +179,19 @@ mod failures {
         assert!(q[0] > 0.0 && q[0] <= 10.0, "{q:?}");
     }
 
+    #[test]
+    fn egmstop_in_a_trap_ends_the_run_it_interrupted() {
+        let e = entry(
+            "trap_stop",
+            &["--device=sensor=builtin:joint:10,0,0,0,30,0"],
+        );
+        assert_eq!(e.code, Some(0), "{}", e.stderr);
+        assert_eq!(tp_lines(&e), ["stopping: 3", "after the TRAP: 2"]);
+        // Stopped after 0.5 s at ≤ 20 °/s: on its way to J1 = 10.
+        let q = final_joints(&e);
+        assert!(q[0] > 1.0 && q[0] < 10.0, "{q:?}");
+    }
+
     /// A receiver for the stream: counts the EgmRobot messages and checks what they say.
     #[test]
     fn position_stream_during_ordinary_motion() {

@@ -53,6 +53,21 @@ PROC no_wait()
   WaitTime 0.5;
   TPWrite "ends while running: "\Num:=EGMGetState(id);
 ENDPROC
+! EGMStop from a TRAP routine ends the EGMRunJoint it interrupted.
+VAR intnum tick;
+PROC trap_stop()
+  MoveAbsJ home, v1000, fine, tool0;
+  setup;
+  CONNECT tick WITH stop_it;
+  ITimer \Single, 0.5, tick;
+  EGMRunJoint id, EGM_STOP_HOLD \J1 \CondTime:=9E9;
+  TPWrite "after the TRAP: "\Num:=EGMGetState(id);
+  IDelete tick;
+ENDPROC
+TRAP stop_it
+  TPWrite "stopping: "\Num:=EGMGetState(id);
+  EGMStop id, EGM_STOP_HOLD;
+ENDTRAP
 ! A position stream to device "sensor" during ordinary motion.
 PROC stream()
   MoveAbsJ home, v1000, fine, tool0;
