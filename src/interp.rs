@@ -29,9 +29,9 @@ pub mod value;
 
 use std::sync::Arc;
 
+pub use crate::ir::errnum;
 use crate::ir::{GlobalOrigin, Program, RoutineId, RoutineKind, Storage};
 use crate::source::Span;
-pub use crate::ir::errnum;
 pub use builtins::{NativeFn, Registry};
 pub use error::{ErrorKind, RuntimeError, StackEntry, Unwind};
 pub use host::{Host, HostError, Output, VirtualHost};
