@@ -11,6 +11,7 @@ pub mod condition;
 pub mod handle;
 pub mod hook;
 pub mod monotonic;
+pub mod pathcorr;
 pub mod priority;
 mod realtime;
 mod rt;

@@ -65,6 +65,12 @@ pub trait PathCorrection: Any + Send {
     /// An uncorrected sample of `instr` follows a corrected sequence that did not end in a
     /// stop point. An error stops the robot; `Ok` lets it go on (the offset is dropped).
     fn leave(&mut self, now: RobotTime, instr: &InstrRef) -> Result<(), MotionError>;
+
+    /// The instruction name that setpoints and events of the corrected `instr` show (e.g.
+    /// `EGMMoveL` for a move queued as a `MoveL`).
+    fn rename(&self, instr: &InstrRef) -> &'static str {
+        instr.name
+    }
 }
 
 /// The executor's measurement of the programmed path of a corrected sequence.

@@ -289,8 +289,8 @@ impl Executor {
         } else {
             match self.next_sample() {
                 Some(out) => {
-                    let instr = self.active_instr().or(self.last_done);
-                    match self.correct(now, instr, out.sample, out.at_stop_point, &prev) {
+                    let mut instr = self.active_instr().or(self.last_done);
+                    match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
                         Err(error) => {
                             self.fault(instr, error);
@@ -355,23 +355,24 @@ impl Executor {
     fn correct(
         &mut self,
         now: RobotTime,
-        instr: Option<InstrRef>,
+        instr: &mut Option<InstrRef>,
         sample: Sample,
         at_stop_point: bool,
         prev: &Setpoint,
     ) -> Result<Sample, MotionError> {
-        let (Some(corr), Some(instr)) = (self.correction.as_mut(), instr) else {
+        let (Some(corr), Some(instr)) = (self.correction.as_mut(), instr.as_mut()) else {
             self.track = None;
             return Ok(sample);
         };
-        if !corr.corrects(&instr) {
+        if !corr.corrects(instr) {
             let open = self.track.is_some_and(|t| t.open);
             self.track = None;
             if open {
-                corr.leave(now, &instr)?;
+                corr.leave(now, instr)?;
             }
             return Ok(sample);
         }
+        instr.name = corr.rename(instr);
         let flange = self.robot.fk(&sample.q);
         let here = sample.tcp.translation.vector;
         let (track, first) = match self.track {
@@ -410,7 +411,7 @@ impl Executor {
             open: !at_stop_point,
         });
         let point = PathPoint {
-            instr,
+            instr: *instr,
             s,
             tcp: sample.tcp,
             flange,
