@@ -9,6 +9,7 @@ mod bench;
 mod check;
 mod dump_ast;
 pub mod program;
+mod progress_line;
 mod render;
 pub mod robots;
 mod run;

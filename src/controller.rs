@@ -10,6 +10,7 @@
 pub mod condition;
 pub mod handle;
 pub mod hook;
+pub mod host;
 pub mod monotonic;
 pub mod pathcorr;
 pub mod priority;
@@ -28,6 +29,7 @@ use crate::robot::{JointsDeg, Robot};
 pub use condition::Condition;
 pub use handle::ControllerHandle;
 pub use hook::CycleHook;
+pub use host::ControllerHost;
 pub use monotonic::MonotonicClock;
 pub use priority::RealtimeConfig;
 pub use sink::TickSink;

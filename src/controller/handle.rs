@@ -35,6 +35,7 @@ pub struct ControllerHandle {
     events: Vec<MotionEvent>,
     wall: MonotonicClock,
     max_wait: Duration,
+    period: Duration,
 }
 
 impl std::fmt::Debug for ControllerHandle {
@@ -100,12 +101,18 @@ impl ControllerHandle {
             events: Vec::new(),
             wall: MonotonicClock::new(),
             max_wait: config.max_wait,
+            period: core_config.period,
         })
     }
 
     /// The robot.
     pub fn robot(&self) -> &Robot {
         &self.robot
+    }
+
+    /// The motion cycle.
+    pub fn period(&self) -> Duration {
+        self.period
     }
 
     /// True in real-time mode.
@@ -116,6 +123,15 @@ impl ControllerHandle {
     /// The current robot time.
     pub fn now(&mut self) -> RobotTime {
         self.state().setpoint.time
+    }
+
+    /// The current robot time, readable through a shared reference (unlike [`Self::now`],
+    /// it collects no events).
+    pub fn time(&self) -> RobotTime {
+        match &self.driver {
+            Driver::Virtual(v) => v.now(),
+            Driver::RealTime(r) => r.published().state.setpoint.time,
+        }
     }
 
     /// The latest motion state.

@@ -1,28 +1,42 @@
-//! The interpreter's only window on the world: time, waiting, output and I/O signals.
+//! The interpreter's only window on the world: time, waiting, output, I/O signals and the
+//! robot.
 //!
 //! The interpreter never touches `std::time`, threads or sockets; the controller (or a test)
 //! implements [`Host`]. [`VirtualHost`] is a pure counter: `WaitTime 10` advances its clock by
-//! ten seconds at once, so runs are deterministic and take no wall time.
+//! ten seconds at once, so runs are deterministic and take no wall time. It has no robot: its
+//! motion methods keep their defaults, which fail with "this controller has no robot".
+//! `controller::host::ControllerHost` is the host with the virtual robot behind it.
 //!
-//! Motion and EGM (issues 4 and 5) plug in without touching the interpreter core:
-//! 1. add capability methods to [`Host`] with default implementations that return
-//!    `HostError::fatal("… is not supported by this controller")` (e.g.
-//!    `submit(&mut self, cmd: robot::MotionCommand)`, `standstill(&self) -> bool`,
-//!    `robot_position(&self) -> …`, EGM session calls);
-//! 2. write the natives in `interp/builtins/motion.rs` (and `egm.rs`) against those methods
-//!    through [`super::builtins::Ctx::host`]; a native that must wait (a fine point, `WaitRob`,
-//!    an EGM movement) uses [`super::builtins::Ctx::wait_host`], which keeps running traps;
-//! 3. or, from the controller, swap an implementation with
-//!    [`super::Registry::replace`] (same signature, so programs keep checking).
+//! # Motion
 //!
-//! Until then the motion and EGM natives fail with "`MoveJ` is not yet supported by rapidvc
-//! (virtual robot: issue 4)": a clear run-time error, never a silent no-op.
+//! The interpreter side only builds [`crate::robot::command`] values; the host plans and
+//! executes them:
+//! * [`Host::motion_submit`] queues a move (blocking while the queue is full) and returns its
+//!   id; RAPID runs ahead of the robot up to the next stop point;
+//! * [`Host::motion_reached`] tells, without blocking, whether a [`MotionWait`] holds; natives
+//!   that must wait (a fine point, `WaitRob`) poll it through
+//!   [`super::builtins::Ctx::wait_host`], so traps keep running. [`Host::wait_until`] of a host
+//!   with a robot returns early whenever the motion state changes (a move ends, the robot
+//!   stops), so such waits end on the cycle where the condition becomes true;
+//! * [`Host::motion_joints`], [`Host::robot_target_of`] and [`Host::robot_joints_of`] read the
+//!   position and do the kinematics of `CJointT`, `CRobT`, `CPos`, `CalcRobT`, `CalcJointT`;
+//! * [`Host::motion_modes`] and [`Host::motion_set`] hold the modal settings (`ConfJ`,
+//!   `ConfL`, `SingArea`, `VelSet`, `AccSet`, program displacement).
+//!
+//! Motion errors come back as [`HostError`]s with the RAPID error number (`ERR_ROBLIMIT`,
+//! `ERR_OUTSIDE_REACH`) and a message that starts with the ABB event number and title, so
+//! `ERROR` handlers can take them and unhandled ones point at the instruction.
+//!
+//! EGM (issue 5) plugs in the same way: capability methods with defaults that fail clearly,
+//! natives in `interp/builtins/egm.rs`.
 
 use std::fmt;
 use std::sync::Arc;
 
 use super::errnum;
 use crate::io::{IoError, SignalTable};
+use crate::robot::command::{MotionCommand, RobTarget};
+use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -77,6 +91,87 @@ impl fmt::Display for HostError {
     }
 }
 
+/// What a program waits for from the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MotionWait {
+    /// The move with this id (from [`Host::motion_submit`]) is complete: a fine point reached,
+    /// or the corner path of a fly-by point begun.
+    Done(u64),
+    /// Every queued move is complete and the robot stands still (`WaitRob \InPos`).
+    InPos,
+    /// The robot does not move right now (`WaitRob \ZeroSpeed`).
+    ZeroSpeed,
+}
+
+/// `SingArea \Off | \Wrist | \LockAxis4`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SingAreaMode {
+    /// `\Off` (the default): paths through singular configurations are refused.
+    #[default]
+    Off,
+    /// `\Wrist`: linear paths may pass close to the wrist singularity.
+    Wrist,
+    /// `\LockAxis4`.
+    LockAxis4,
+}
+
+/// A change of a modal motion setting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MotionSetting {
+    /// `ConfJ \On` (true) or `\Off`.
+    ConfJ(bool),
+    /// `ConfL \On` (true) or `\Off`.
+    ConfL(bool),
+    /// `SingArea`.
+    SingArea(SingAreaMode),
+    /// `VelSet Override, Max`.
+    VelSet {
+        /// Speed override in percent.
+        override_pct: f64,
+        /// Maximum TCP speed (mm/s).
+        max_tcp: f64,
+    },
+    /// `AccSet Acc, Ramp`.
+    AccSet {
+        /// Acceleration in percent of normal.
+        acc_pct: f64,
+        /// Jerk in percent of normal.
+        ramp_pct: f64,
+    },
+    /// Program displacement (`PDispSet`, `PDispOn`); the identity switches it off
+    /// (`PDispOff`).
+    PDisp(Pose),
+}
+
+/// The modal settings move instructions read when they build a command.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotionModes {
+    /// `ConfJ \On` (the default after program start).
+    pub conf_j: bool,
+    /// `ConfL \On` (the default after program start).
+    pub conf_l: bool,
+    /// The active program displacement (identity when off).
+    pub pdisp: Pose,
+}
+
+impl Default for MotionModes {
+    fn default() -> Self {
+        MotionModes {
+            conf_j: true,
+            conf_l: true,
+            pdisp: Pose::identity(),
+        }
+    }
+}
+
+/// The error of a motion method on a host without a robot.
+pub fn no_robot() -> HostError {
+    HostError::fatal(
+        "this controller has no robot: motion instructions and functions need the virtual \
+         robot of `rapidvc run`",
+    )
+}
+
 /// Everything the interpreter needs from the controller.
 pub trait Host {
     /// Current time in seconds since the program started.
@@ -95,6 +190,74 @@ pub trait Host {
 
     /// Set an output signal (or simulate an input).
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError>;
+
+    /// Plan and queue a move; blocks while the motion queue is full. The host numbers the
+    /// moves: the `id` in `cmd` is replaced, and the new one is returned (for
+    /// [`MotionWait::Done`]). A move that cannot be executed is refused here, before the
+    /// robot moves.
+    fn motion_submit(&mut self, cmd: MotionCommand) -> Result<u64, HostError> {
+        let _ = cmd;
+        Err(no_robot())
+    }
+
+    /// Whether `wait` holds now (never blocks). An error when the robot stopped on a motion
+    /// error, or when the condition can never become true. A host without a robot is always
+    /// in position and standing still.
+    fn motion_reached(&mut self, wait: MotionWait) -> Result<bool, HostError> {
+        match wait {
+            MotionWait::Done(_) => Err(no_robot()),
+            MotionWait::InPos | MotionWait::ZeroSpeed => Ok(true),
+        }
+    }
+
+    /// The robot's current axis values (deg).
+    fn motion_joints(&mut self) -> Result<JointsDeg, HostError> {
+        Err(no_robot())
+    }
+
+    /// The modal motion settings (`ConfJ`, `ConfL`, program displacement).
+    fn motion_modes(&self) -> MotionModes {
+        MotionModes::default()
+    }
+
+    /// Change a modal motion setting for the moves queued from now on.
+    fn motion_set(&mut self, setting: MotionSetting) -> Result<(), HostError> {
+        let _ = setting;
+        Err(no_robot())
+    }
+
+    /// Where the TCP of `tool` is at `joints`, as a robtarget in the object frame of `wobj`
+    /// with program displacement `pdisp` removed, with the configuration of `joints`
+    /// (`CRobT`, `CalcRobT`).
+    fn robot_target_of(
+        &self,
+        joints: &JointsDeg,
+        tool: &ToolData,
+        wobj: &WobjData,
+        pdisp: &Pose,
+    ) -> Result<RobTarget, HostError> {
+        let _ = (joints, tool, wobj, pdisp);
+        Err(no_robot())
+    }
+
+    /// The axis values that put the TCP of `tool` at `target` (object frame of `wobj`,
+    /// displaced by `pdisp`) in the target's configuration (`CalcJointT`).
+    fn robot_joints_of(
+        &self,
+        target: &RobTarget,
+        tool: &ToolData,
+        wobj: &WobjData,
+        pdisp: &Pose,
+    ) -> Result<JointsDeg, HostError> {
+        let _ = (target, tool, wobj, pdisp);
+        Err(no_robot())
+    }
+
+    /// The concrete host, for a front end that needs it back after a run (e.g. to finish the
+    /// controller and print its summary).
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        None
+    }
 }
 
 /// A callback that receives program output.

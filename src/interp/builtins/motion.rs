@@ -1,9 +1,19 @@
-//! Motion instructions and functions: their signatures, so programs check today, and
-//! implementations that fail clearly until the virtual robot (issue 4) plugs in through
-//! [`super::Registry::replace`].
+//! Motion instructions and functions: their signatures and implementations over the
+//! [`crate::interp::Host`] motion methods (the interpreter only builds
+//! [`crate::robot::command`] values; the host plans, moves and does the kinematics).
+//!
+//! Moves only queue commands: RAPID runs ahead of the robot up to the next stop point
+//! (`fine` without `\Conc`), where it waits until the robot is there. Waits keep running
+//! traps. On a host without a robot every motion native fails with a clear error.
 
-use super::{Ctx, Registry};
+mod data;
+mod moves;
+mod position;
+mod settings;
+
+use super::{Ctx, NativeFn, Registry};
 use crate::interp::error::Exec;
+use crate::interp::host::MotionWait;
 use crate::interp::value::Value;
 
 /// The motion signatures (also used by the controller when it replaces the implementations).
@@ -51,18 +61,47 @@ pub const EGM_SIGNATURES: &[&str] = &[
     r"PROC EGMMoveC(VAR egmident EGMid, robtarget CirPoint, robtarget ToPoint, speeddata Speed, zonedata Zone, PERS tooldata Tool, \PERS wobjdata WObj, \PERS loaddata TLoad, \switch NoCorr)",
 ];
 
+/// The implementation of each entry of [`SIGNATURES`], in the same order.
+const IMPLS: [NativeFn; 18] = [
+    moves::move_abs_j,
+    moves::move_j,
+    moves::move_l,
+    moves::move_c,
+    settings::conf_j,
+    settings::conf_l,
+    settings::sing_area,
+    settings::vel_set,
+    settings::acc_set,
+    position::c_rob_t,
+    position::c_joint_t,
+    position::c_pos,
+    position::calc_joint_t,
+    position::calc_rob_t,
+    position::wait_rob,
+    settings::pdisp_set,
+    settings::pdisp_off,
+    settings::pdisp_on,
+];
+
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
-    for s in SIGNATURES {
-        r.add(s, motion_pending);
+    for (s, f) in SIGNATURES.iter().zip(IMPLS) {
+        r.add(s, f);
     }
     for s in EGM_SIGNATURES {
         r.add(s, egm_pending);
     }
 }
 
-fn motion_pending(cx: &mut Ctx<'_>) -> Exec<Value> {
-    Err(cx.unsupported("virtual robot: issue 4"))
+/// How long (robot time) a motion wait may go without looking at the condition. A host with
+/// a robot ends each wait early whenever the motion state changes, so this only bounds waits
+/// on a host that cannot tell.
+const MOTION_POLL_S: f64 = 1.0;
+
+/// Wait until `w` holds, running traps meanwhile (a fine point, `WaitRob`, `WaitTime \InPos`).
+pub(crate) fn wait_for(cx: &mut Ctx<'_>, w: MotionWait) -> Exec<()> {
+    cx.wait_host(None, MOTION_POLL_S, |h| h.motion_reached(w))?;
+    Ok(())
 }
 
 fn egm_pending(cx: &mut Ctx<'_>) -> Exec<Value> {

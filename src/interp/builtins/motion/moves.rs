@@ -1,0 +1,151 @@
+//! `MoveAbsJ`, `MoveJ`, `MoveL`, `MoveC`: build a [`MotionCommand`] from the arguments and the
+//! modal settings, queue it through the host, and at a stop point (`fine` without `\Conc`)
+//! wait until the robot is there.
+
+use super::data;
+use super::wait_for;
+use crate::interp::builtins::Ctx;
+use crate::interp::error::Exec;
+use crate::interp::host::MotionWait;
+use crate::interp::value::Value;
+use crate::robot::command::{
+    MotionCommand, MoveAbsJ, MoveArgs, MoveC, MoveJ, MoveL, SpeedOverride,
+};
+
+/// Where the arguments every move has sit in a signature: `Speed` at `speed`, then `\V`,
+/// `\T`, `Zone`, `\Z`, `Tool`, `\WObj`; `\TLoad` at `tload`.
+#[derive(Clone, Copy)]
+struct Layout {
+    speed: usize,
+    tload: usize,
+}
+
+impl Layout {
+    fn v(self) -> usize {
+        self.speed + 1
+    }
+    fn t(self) -> usize {
+        self.speed + 2
+    }
+    fn zone(self) -> usize {
+        self.speed + 3
+    }
+    fn z(self) -> usize {
+        self.speed + 4
+    }
+    fn tool(self) -> usize {
+        self.speed + 5
+    }
+    fn wobj(self) -> usize {
+        self.speed + 6
+    }
+}
+
+/// `\Conc` is the first argument of every move.
+const CONC: usize = 0;
+
+/// The arguments common to every move (the id is given by the host).
+fn move_args(cx: &Ctx<'_>, l: Layout) -> Exec<MoveArgs> {
+    let speed = data::speeddata(cx, cx.value(l.speed)?)?;
+    let speed_override = if cx.present(l.v()) {
+        Some(SpeedOverride::V(cx.f64(l.v())?))
+    } else if cx.present(l.t()) {
+        Some(SpeedOverride::T(cx.f64(l.t())?))
+    } else {
+        None
+    };
+    let mut zone = data::zonedata(cx, cx.value(l.zone())?)?;
+    if let Some(z) = cx.opt_f64(l.z())? {
+        zone.pzone_tcp = z;
+    }
+    let tool = data::tooldata(cx, cx.value(l.tool())?)?;
+    let wobj = data::opt_wobj(cx, l.wobj())?;
+    let tload = if cx.present(l.tload) {
+        Some(data::loaddata(cx, cx.value(l.tload)?)?)
+    } else {
+        None
+    };
+    let pdisp = cx.it.host.motion_modes().pdisp;
+    Ok(MoveArgs {
+        id: 0,
+        source: Some(cx.span),
+        speed,
+        speed_override,
+        zone,
+        tool,
+        wobj,
+        tload,
+        pdisp,
+    })
+}
+
+/// Queue the move; at a stop point without `\Conc`, wait until the robot is there.
+fn submit(cx: &mut Ctx<'_>, cmd: MotionCommand) -> Exec<Value> {
+    let stop_point = cmd.args().zone.finep && !cx.present(CONC);
+    let id = cx.host().motion_submit(cmd).map_err(|e| cx.host_err(e))?;
+    if stop_point {
+        wait_for(cx, MotionWait::Done(id))?;
+    }
+    Ok(Value::Absent)
+}
+
+/// `MoveAbsJ [\Conc,] ToJointPos [\ID] [\NoEOffs], Speed [\V]|[\T], Zone [\Z], Tool [\WObj]
+/// [\TLoad]`.
+pub(super) fn move_abs_j(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let l = Layout {
+        speed: 4,
+        tload: 11,
+    };
+    let cmd = MotionCommand::MoveAbsJ(MoveAbsJ {
+        args: move_args(cx, l)?,
+        target: data::jointtarget(cx, cx.value(1)?)?,
+        no_eoffs: cx.present(3),
+    });
+    submit(cx, cmd)
+}
+
+/// `MoveJ [\Conc,] ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\TLoad]`.
+pub(super) fn move_j(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let l = Layout {
+        speed: 3,
+        tload: 10,
+    };
+    let cmd = MotionCommand::MoveJ(MoveJ {
+        args: move_args(cx, l)?,
+        target: data::robtarget(cx, cx.value(1)?)?,
+        conf_check: cx.it.host.motion_modes().conf_j,
+    });
+    submit(cx, cmd)
+}
+
+/// `MoveL [\Conc,] ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr] [\TLoad]`.
+/// `\Corr` is accepted: without a connected correction generator (rapidvc has none) it adds
+/// nothing.
+pub(super) fn move_l(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let l = Layout {
+        speed: 3,
+        tload: 11,
+    };
+    let cmd = MotionCommand::MoveL(MoveL {
+        args: move_args(cx, l)?,
+        target: data::robtarget(cx, cx.value(1)?)?,
+        conf_check: cx.it.host.motion_modes().conf_l,
+    });
+    submit(cx, cmd)
+}
+
+/// `MoveC [\Conc,] CirPoint, ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr]
+/// [\TLoad]`.
+pub(super) fn move_c(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let l = Layout {
+        speed: 4,
+        tload: 12,
+    };
+    let cmd = MotionCommand::MoveC(MoveC {
+        args: move_args(cx, l)?,
+        cir_point: data::robtarget(cx, cx.value(1)?)?,
+        to_point: data::robtarget(cx, cx.value(2)?)?,
+        conf_check: cx.it.host.motion_modes().conf_l,
+    });
+    submit(cx, cmd)
+}
