@@ -8,6 +8,7 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 pub mod condition;
+pub mod egm;
 pub mod handle;
 pub mod hook;
 pub mod host;

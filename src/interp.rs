@@ -81,6 +81,8 @@ pub type StmtHook = Box<dyn FnMut(&StmtEvent<'_>) -> HookAction + Send>;
 #[derive(Debug)]
 struct Frame {
     routine: RoutineId,
+    /// First value slot of the frame (names local data, e.g. an `egmident` identity).
+    bp: u32,
     /// The statement currently executing (for stack traces).
     at: Span,
     /// Inside its ERROR handler: the error being handled.

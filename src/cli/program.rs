@@ -53,6 +53,9 @@ pub struct Loaded {
     pub registry: Registry,
     /// The I/O signals (built-in plus `EIO.cfg`).
     pub signals: Arc<SignalTable>,
+    /// The configuration directory's system parameters (UdpUc devices of `SIO.cfg`, motion
+    /// profiles of `MOC.cfg`; the built-in ones without files).
+    pub config: config::Config,
     /// A file could not be read (usage or I/O error rather than a program error).
     pub io_failed: bool,
 }
@@ -100,6 +103,11 @@ pub fn load_signals(
         Some(d) => config::load_dir(d, sources, diags),
         None => config::Config::default(),
     };
+    signal_table(&cfg, diags)
+}
+
+/// The signal table of a configuration; problems go to `diags`.
+fn signal_table(cfg: &config::Config, diags: &mut Diagnostics) -> Arc<SignalTable> {
     match cfg.signal_table() {
         Ok(t) => Arc::new(t),
         Err(e) => {
@@ -226,7 +234,11 @@ pub fn load(paths: &[PathBuf], config: Option<&Path>) -> Loaded {
         }
     }
     let dir = config_dir(config, paths);
-    let signals = load_signals(dir.as_deref(), &mut sources, &mut diags);
+    let cfg = match dir.as_deref() {
+        Some(d) => config::load_dir(d, &mut sources, &mut diags),
+        None => config::Config::default(),
+    };
+    let signals = signal_table(&cfg, &mut diags);
     let program = if diags.has_errors() || io_failed {
         None
     } else {
@@ -238,6 +250,7 @@ pub fn load(paths: &[PathBuf], config: Option<&Path>) -> Loaded {
         program,
         registry,
         signals,
+        config: cfg,
         io_failed,
     }
 }

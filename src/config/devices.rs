@@ -393,6 +393,13 @@ impl DeviceTable {
         names
     }
 
+    /// The devices that resolve to an external sensor (SIO.cfg's UdpUc devices and
+    /// `--device NAME=HOST:PORT`): with any, the controller's clock runs in real time (or
+    /// lockstep), because a sensor outside rapidvc lives in real time.
+    pub fn external_devices(&self) -> Vec<String> {
+        self.udp_device_names()
+    }
+
     /// What the device `name` is (module doc: precedence).
     pub fn resolve_device(&self, name: &str) -> Result<DeviceTarget, DeviceError> {
         let key = device_key(name);

@@ -4,6 +4,7 @@
 
 mod clock;
 mod core;
+mod egm;
 mod interrupts;
 mod io;
 mod math;
@@ -72,6 +73,7 @@ impl Registry {
         io::register(&mut r);
         interrupts::register(&mut r);
         motion::register(&mut r);
+        egm::register(&mut r);
         r
     }
 

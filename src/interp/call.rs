@@ -87,6 +87,7 @@ impl Interp {
         }
         self.frames.push(Frame {
             routine: rid,
+            bp: bp as u32,
             at: *st_span,
             handling: None,
         });
@@ -157,6 +158,7 @@ impl Interp {
         }
         self.frames.push(Frame {
             routine: rid,
+            bp: bp as u32,
             at: r.head_span,
             handling: None,
         });

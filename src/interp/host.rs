@@ -38,6 +38,9 @@ use crate::io::{IoError, SignalTable};
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 
+mod egm;
+pub use egm::{EgmHost, EgmRun};
+
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Output {
@@ -256,6 +259,12 @@ pub trait Host {
     /// The concrete host, for a front end that needs it back after a run (e.g. to finish the
     /// controller and print its summary).
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        None
+    }
+
+    /// The EGM capability, when this controller has one (the EGM instructions fail with
+    /// "not supported by this controller" otherwise).
+    fn egm(&mut self) -> Option<&mut dyn EgmHost> {
         None
     }
 }

@@ -19,8 +19,11 @@ def parse_args(client):
     p.add_argument("--mode", choices=["joint", "pose"], default="joint")
     p.add_argument("--target", default="10,-5,20,0,40,30",
                    help="joint: J1..J6 degrees; pose: X,Y,Z mm,QW,QX,QY,QZ")
-    p.add_argument("--count", type=int, default=300)
+    p.add_argument("--count", type=int, default=300,
+                   help="stop after this many messages (0: no limit)")
     p.add_argument("--timeout", type=float, default=20.0)
+    p.add_argument("--until-quiet", type=float, default=0.0,
+                   help="stop once messages stopped for this many seconds (after the first)")
     args = p.parse_args()
     args.values = [float(v) for v in args.target.split(",")]
     need = 6 if args.mode == "joint" else 7
@@ -120,20 +123,26 @@ def run(client, args, egm, receive, reply, extra_check):
     checker = Checker()
     replied = 0
     deadline = time.monotonic() + args.timeout
+    last_rx = None
     reason = "timeout"
     while time.monotonic() < deadline:
         ok, state = receive()
+        now = time.monotonic()
         if not ok:
+            if args.until_quiet and last_rx is not None and now - last_rx >= args.until_quiet:
+                reason = "quiet"
+                break
             continue
+        last_rx = now
         checker.check(state.robot_message)
         extra_check(checker, state)
         if reply(state):
             replied += 1
-        if checker.received >= args.count:
+        if args.count and checker.received >= args.count:
             reason = "count"
             break
     say(checker.summary(client, args.mode, replied, reason))
-    return 0 if reason == "count" and not checker.problems else 1
+    return 0 if reason in ("count", "quiet") and not checker.problems else 1
 
 
 if __name__ == "__main__":

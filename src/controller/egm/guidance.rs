@@ -1,0 +1,128 @@
+//! One EGM run (EGMRunJoint/EGMRunPose) as the motion core's external guidance: the driver is ticked inside the motion cycle, and the program side reaches it only through lock-free requests (EGMStop, program stop).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::time::Duration;
+
+use crate::egm::registry::EgmId;
+use crate::egm::servo::StopMode;
+use crate::egm::{EgmDriver, EgmTick};
+use crate::motion::{ExternalGuidance, GuidanceStep, RobotTime};
+use crate::robot::JointsDeg;
+
+const NONE: u8 = 0;
+const STOP_HOLD: u8 = 1;
+const STOP_RAMP_DOWN: u8 = 2;
+const HALT: u8 = 3;
+
+/// Requests from the program side to a running EGM run (set by the interpreter's thread,
+/// taken by the motion cycle; atomics only).
+#[derive(Debug, Default)]
+pub(crate) struct RunControl {
+    request: AtomicU8,
+    /// `\RampOutTime` of an EGMStop in ns; `u64::MAX`: none given.
+    ramp_out_ns: AtomicU64,
+}
+
+/// A request taken by the cycle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Request {
+    Stop(StopMode, Option<Duration>),
+    Halt,
+}
+
+impl RunControl {
+    /// `EGMStop Mode \RampOutTime`.
+    pub(crate) fn stop(&self, mode: StopMode, ramp_out: Option<Duration>) {
+        let ns = ramp_out.map_or(u64::MAX, |d| {
+            u64::try_from(d.as_nanos()).unwrap_or(u64::MAX - 1)
+        });
+        self.ramp_out_ns.store(ns, Ordering::Release);
+        let r = match mode {
+            StopMode::Hold => STOP_HOLD,
+            StopMode::RampDown => STOP_RAMP_DOWN,
+        };
+        self.request.store(r, Ordering::Release);
+    }
+
+    /// Program stop: ramp the EGM speed out.
+    pub(crate) fn halt(&self) {
+        self.request.store(HALT, Ordering::Release);
+    }
+
+    /// The pending request, if any (taken once).
+    pub(crate) fn take(&self) -> Option<Request> {
+        let r = self.request.swap(NONE, Ordering::AcqRel);
+        let ramp = || match self.ramp_out_ns.load(Ordering::Acquire) {
+            u64::MAX => None,
+            ns => Some(Duration::from_nanos(ns)),
+        };
+        match r {
+            STOP_HOLD => Some(Request::Stop(StopMode::Hold, ramp())),
+            STOP_RAMP_DOWN => Some(Request::Stop(StopMode::RampDown, ramp())),
+            HALT => Some(Request::Halt),
+            _ => None,
+        }
+    }
+}
+
+/// The motion core's external guidance for one EGM run.
+#[derive(Debug)]
+pub(crate) struct EgmGuidance {
+    /// The identity (to tell the registry when the run is over).
+    pub id: EgmId,
+    /// The identity's name, shared with reports and log rows without allocating.
+    pub name: Arc<str>,
+    /// The driver.
+    pub driver: EgmDriver,
+    /// Requests from the program side.
+    pub control: Arc<RunControl>,
+    /// MaxSpeedDeviation limited the speed since the hook last looked.
+    pub speed_limited: bool,
+    /// The last tick's result.
+    pub last: Option<EgmTick>,
+    /// The reference last seen in a log row (carried on when a message got no reply).
+    pub last_reference: Option<[f64; 6]>,
+}
+
+impl ExternalGuidance for EgmGuidance {
+    fn step(&mut self, now: RobotTime, current: &JointsDeg) -> GuidanceStep {
+        match self.control.take() {
+            Some(Request::Stop(mode, ramp)) => self.driver.stop(mode, ramp),
+            Some(Request::Halt) => self.driver.halt(),
+            None => {}
+        }
+        if self.driver.is_finished() {
+            return GuidanceStep::Finished;
+        }
+        let t = self.driver.tick(now.since_start(), current);
+        self.speed_limited |= t.speed_limited;
+        let q = t.joints_cmd;
+        self.last = Some(t);
+        GuidanceStep::MoveTo(q)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_are_taken_once() {
+        let c = RunControl::default();
+        assert_eq!(c.take(), None);
+        c.stop(StopMode::RampDown, Some(Duration::from_millis(300)));
+        assert_eq!(
+            c.take(),
+            Some(Request::Stop(
+                StopMode::RampDown,
+                Some(Duration::from_millis(300))
+            ))
+        );
+        assert_eq!(c.take(), None);
+        c.stop(StopMode::Hold, None);
+        assert_eq!(c.take(), Some(Request::Stop(StopMode::Hold, None)));
+        c.halt();
+        assert_eq!(c.take(), Some(Request::Halt));
+    }
+}
