@@ -31,7 +31,7 @@ pub enum Command {
     /// Check RAPID files or directories for syntax and semantic errors.
     Check(check::CheckArgs),
     /// Run a RAPID program on the virtual controller (TP output on stdout).
-    Run(run::RunArgs),
+    Run(Box<run::RunArgs>),
     /// Run every `PROC test_*` of RAPID test modules (`Assert cond \Msg:="…"`).
     Test(test::TestArgs),
     /// Print the syntax tree of one file (for debugging the parser).
@@ -51,7 +51,7 @@ pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
-        Command::Run(args) => run::run(args),
+        Command::Run(args) => run::run(*args),
         Command::Robots(args) => robots::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Sensor(args) => sensor::run(*args),

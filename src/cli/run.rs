@@ -14,14 +14,17 @@ use std::time::Duration;
 
 use super::robots::RobotArg;
 use super::{program, progress_line, render};
+
+pub mod egm;
+use crate::controller::egm::EgmController;
 use crate::controller::{
-    ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, RealtimeConfig,
-    RunSummary, TickSink,
+    ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, CycleHook,
+    RealtimeConfig, RunSummary, TickSink,
 };
 use crate::interp::{Interp, Outcome, Output, pers};
 use crate::motion::CoreConfig;
 use crate::motion::settings::PERIOD_RANGE;
-use crate::report::{PlotRecorder, TraceWriter};
+use crate::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
 use crate::source::SourceMap;
 
@@ -72,6 +75,9 @@ pub struct RunArgs {
     /// Motion cycle in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 4.0)]
     pub period: f64,
+    /// EGM: devices, message log, lockstep.
+    #[command(flatten)]
+    pub egm: egm::EgmArgs,
 }
 
 /// `--start J1,J2,J3,J4,J5,J6` (brackets allowed: `[0,0,0,0,30,0]`).
@@ -111,14 +117,17 @@ pub fn run(args: RunArgs) -> ExitCode {
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
-    let ctl = match start_controller(&args, &sources) {
-        Ok(c) => c,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return ExitCode::from(2);
-        }
-    };
+    let uses_egm = egm::uses_egm(&prog, &sources);
+    let (ctl, egm_controller) =
+        match start_controller(&args, &sources, &loaded.config, &signals, uses_egm) {
+            Ok(c) => c,
+            Err(msg) => {
+                eprintln!("error: {msg}");
+                return ExitCode::from(2);
+            }
+        };
     let host = ControllerHost::new(ctl)
+        .with_egm(egm_controller)
         .with_signals(signals)
         .with_max_time(args.max_time)
         .with_lines(Arc::clone(&sources))
@@ -141,6 +150,15 @@ pub fn run(args: RunArgs) -> ExitCode {
             run_cycles(&args, &mut it, &sources)
         }
     };
+    // An EGM run still active ramps out, streams end; a `\NoWaitCond` run's error nobody
+    // waited for is reported now.
+    if let Some(egm_host) = it.host_mut().egm()
+        && let Err(e) = egm_host.egm_program_stopped()
+    {
+        progress_line::clear();
+        eprintln!("error: {e}");
+        code = ExitCode::from(1);
+    }
     let announce = args.trace.is_some() || args.plot.is_some() || args.realtime;
     if let Some(host) = it
         .host_mut()
@@ -148,6 +166,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         .and_then(|a| a.downcast_mut::<ControllerHost>())
     {
         let moved = host.moves_submitted() > 0;
+        let egm_controller = host.take_egm();
         match host.finish(drain) {
             Ok(summary) => {
                 if moved || announce {
@@ -158,6 +177,12 @@ pub fn run(args: RunArgs) -> ExitCode {
                 eprintln!("error: {e}");
                 code = ExitCode::from(2);
             }
+        }
+        if let Some(e) = egm_controller
+            && let Err(msg) = egm::finish(e, &args.egm)
+        {
+            eprintln!("error: {msg}");
+            code = ExitCode::from(2);
         }
     }
     if let Some(path) = &args.pers {
@@ -218,8 +243,15 @@ fn load_pers(args: &RunArgs, it: &mut Interp) -> Result<Vec<pers::PersEntry>, Ex
     Ok(unknown)
 }
 
-/// The controller of this run: robot, period, start position, clock, trace and plot.
-fn start_controller(args: &RunArgs, sources: &Arc<SourceMap>) -> Result<ControllerHandle, String> {
+/// The controller of this run: robot, period, start position, clock, trace and plot, and its
+/// EGM side (devices, clock choice, report feed, `--egm-log`).
+fn start_controller(
+    args: &RunArgs,
+    sources: &Arc<SourceMap>,
+    cfg: &crate::config::Config,
+    signals: &Arc<crate::io::SignalTable>,
+    uses_egm: bool,
+) -> Result<(ControllerHandle, EgmController), String> {
     let period_ms = args.period;
     let (lo, hi) = (
         PERIOD_RANGE.0.as_secs_f64() * 1e3,
@@ -237,19 +269,28 @@ fn start_controller(args: &RunArgs, sources: &Arc<SourceMap>) -> Result<Controll
         ));
     }
     let mut sinks: Vec<Box<dyn TickSink>> = Vec::new();
+    let mut feed = Feed::new();
     if let Some(path) = &args.trace {
-        sinks.push(Box::new(TraceWriter::create(
-            path,
-            Some(Arc::clone(sources)),
-        )?));
+        let lines = Some(Arc::clone(sources));
+        sinks.push(Box::new(if uses_egm {
+            TraceWriter::create_with_feed(
+                path,
+                lines,
+                TraceColumns::EGM_AND_PATHCORR,
+                feed.subscribe(),
+            )?
+        } else {
+            TraceWriter::create(path, lines)?
+        }));
     }
     if let Some(path) = &args.plot {
         let title = plot_title(args);
-        sinks.push(Box::new(PlotRecorder::new(
-            path,
-            &title,
-            Some(Arc::clone(sources)),
-        )?));
+        let plot = PlotRecorder::new(path, &title, Some(Arc::clone(sources)))?;
+        sinks.push(Box::new(if uses_egm {
+            plot.with_feed(feed.subscribe())
+        } else {
+            plot
+        }));
     }
     if std::io::stderr().is_terminal() {
         sinks.push(Box::new(progress_line::ProgressLine::new(Arc::clone(
@@ -257,14 +298,34 @@ fn start_controller(args: &RunArgs, sources: &Arc<SourceMap>) -> Result<Controll
         ))));
     }
     let start = args.start.map_or(DEFAULT_START, |s| s.0);
-    let mut config = ControllerConfig::new(Robot::new(args.robot.0), start);
+    let robot = Robot::new(args.robot.0);
+    let mut config = ControllerConfig::new(robot.clone(), start);
     config.core = CoreConfig {
         period: Duration::from_secs_f64(period_ms / 1e3),
         ..CoreConfig::default()
     };
     config.max_wait = Duration::from_secs_f64(args.max_time);
-    if !args.realtime {
-        return ControllerHandle::start(config, sinks).map_err(|e| start_error(&e));
+    if args.egm.lockstep && args.realtime {
+        return Err("--lockstep keeps virtual time; it cannot be combined with --realtime".into());
+    }
+    let feed = (!feed.is_unused()).then_some(feed);
+    let prepared = args
+        .egm
+        .prepare(cfg, &robot, Arc::clone(signals), config.core.period, feed)?;
+    let realtime = args.realtime || (uses_egm && prepared.needs_realtime);
+    if realtime && !args.realtime {
+        progress_line::clear();
+        eprintln!(
+            "note: EGM device {} is an external sensor: the clock runs in real time (--lockstep keeps virtual time)",
+            prepared.external.join(", ")
+        );
+    }
+    let hook: Option<Box<dyn CycleHook>> = Some(Box::new(prepared.hook));
+    let egm_controller = prepared.controller;
+    if !realtime {
+        return ControllerHandle::start_with_hook(config, sinks, hook)
+            .map(|c| (c, egm_controller))
+            .map_err(|e| start_error(&e));
     }
     // Real time: SCHED_FIFO when the system grants it, else normal priority.
     config.clock = ClockMode::RealTime(RealtimeConfig::Enforce);
@@ -278,7 +339,9 @@ fn start_controller(args: &RunArgs, sources: &Arc<SourceMap>) -> Result<Controll
         }
         Err(e) => return Err(start_error(&e)),
     }
-    ControllerHandle::start(config, sinks).map_err(|e| start_error(&e))
+    ControllerHandle::start_with_hook(config, sinks, hook)
+        .map(|c| (c, egm_controller))
+        .map_err(|e| start_error(&e))
 }
 
 fn start_error(e: &ControllerError) -> String {

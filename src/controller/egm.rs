@@ -747,7 +747,6 @@ impl EgmController {
             control: Arc::clone(&control),
             speed_limited: false,
             last: None,
-            last_reference: None,
         };
         if let Err(e) = handle.start_external(Box::new(guidance), plan.tool, instr) {
             self.registry.run_finished(id, false);

@@ -7,6 +7,7 @@
 //! The struct is built with `ControllerHost::new(handle)` and `with_*` methods, so other
 //! capabilities (EGM) can add fields and builders without touching the callers.
 
+mod egm;
 mod events;
 
 use std::sync::Arc;
@@ -24,8 +25,10 @@ use crate::source::SourceMap;
 
 use super::ControllerError;
 use super::condition::Condition;
+use super::egm::{EgmController, LastMove};
 use super::handle::ControllerHandle;
 use super::summary::RunSummary;
+use crate::interp::host::EgmHost;
 use events::stopped_error;
 
 pub use events::{describe_event, kin_error, motion_error};
@@ -50,6 +53,10 @@ pub struct ControllerHost {
     /// deadline while the robot's clock moves in whole motion cycles, so the program's clock
     /// may be ahead of the robot's by less than one cycle.
     program_time: f64,
+    /// The EGM side (`None`: EGM instructions are not supported).
+    egm: Option<EgmController>,
+    /// What the last move handed to the controller was (EGM movements need a stop point).
+    last_move: LastMove,
 }
 
 impl std::fmt::Debug for ControllerHost {
@@ -76,7 +83,20 @@ impl ControllerHost {
             max_time: None,
             lines: None,
             program_time: 0.0,
+            egm: None,
+            last_move: LastMove::None,
         }
+    }
+
+    /// Run EGM instructions with `egm` (whose cycle hook runs in this host's controller).
+    pub fn with_egm(mut self, egm: EgmController) -> Self {
+        self.egm = Some(egm);
+        self
+    }
+
+    /// The EGM side, taken out (to finish it after [`ControllerHost::finish`]).
+    pub fn take_egm(&mut self) -> Option<EgmController> {
+        self.egm.take()
     }
 
     /// Use this signal table.
@@ -297,11 +317,17 @@ impl Host for ControllerHost {
         self.last_id += 1;
         let id = self.last_id;
         set_id(&mut cmd, id);
+        let stop_point = zone_of(&cmd).finep;
         let result = self.ctl()?.submit(cmd);
         self.pump_events();
         match result {
             Ok(()) => {
                 self.submitted += 1;
+                self.last_move = if stop_point {
+                    LastMove::StopPoint
+                } else {
+                    LastMove::FlyBy
+                };
                 Ok(id)
             }
             Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
@@ -407,6 +433,20 @@ impl Host for ControllerHost {
 
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
+    }
+
+    fn egm(&mut self) -> Option<&mut dyn EgmHost> {
+        if self.egm.is_some() { Some(self) } else { None }
+    }
+}
+
+/// The zone of a command.
+fn zone_of(cmd: &MotionCommand) -> &crate::robot::command::ZoneData {
+    match cmd {
+        MotionCommand::MoveAbsJ(m) => &m.args.zone,
+        MotionCommand::MoveJ(m) => &m.args.zone,
+        MotionCommand::MoveL(m) => &m.args.zone,
+        MotionCommand::MoveC(m) => &m.args.zone,
     }
 }
 

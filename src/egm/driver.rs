@@ -423,6 +423,32 @@ impl EgmDriver {
         &self.cmd
     }
 
+    /// The reference in use and the measured position in the same axes, for reports: joints
+    /// in degrees in joint mode; in pose mode the ordered and the measured TCP in the
+    /// correction frame (x, y, z mm; rx, ry, rz degrees, Euler ZYX). The reference is `None`
+    /// before the first one arrived.
+    pub fn tracking(&self) -> (Option<[f64; 6]>, [f64; 6]) {
+        match (&self.guidance, self.mode) {
+            (Some(g), EgmMode::Pose) => {
+                let reference = self
+                    .ordered
+                    .map(|o| pose6(&WirePose::from(&(g.correction_frame().inverse() * o))));
+                (reference, pose6(&self.fb_pose))
+            }
+            _ => {
+                // Axes the run does not move keep their start value as reference.
+                let selected = self.servo.params().selected;
+                let mut reference = self.input.position;
+                for ((r, s), on) in reference.iter_mut().zip(&self.start).zip(&selected) {
+                    if !on {
+                        *r = *s;
+                    }
+                }
+                (self.have_reference.then_some(reference), self.fb)
+            }
+        }
+    }
+
     /// The result, once finished.
     pub fn outcome(&self) -> Option<&Result<EgmEnd, EgmError>> {
         self.outcome.as_ref()

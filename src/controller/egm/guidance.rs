@@ -81,8 +81,6 @@ pub(crate) struct EgmGuidance {
     pub speed_limited: bool,
     /// The last tick's result.
     pub last: Option<EgmTick>,
-    /// The reference last seen in a log row (carried on when a message got no reply).
-    pub last_reference: Option<[f64; 6]>,
 }
 
 impl ExternalGuidance for EgmGuidance {

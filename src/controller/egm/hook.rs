@@ -12,7 +12,8 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use crate::controller::CycleHook;
-use crate::egm::log::{LogKind, LogRow};
+use crate::egm::EgmMode;
+use crate::egm::log::LogRow;
 use crate::egm::registry::EgmId;
 use crate::egm::types::RapidExecState;
 use crate::egm::{EgmEvent, EgmStream};
@@ -93,30 +94,33 @@ impl EgmHook {
         }
     }
 
-    /// Events and rows of the run; one feed sample per message.
+    /// Events and log rows of the run.
     fn drain_run(&self, g: &mut EgmGuidance) {
         while let Some(e) = g.driver.poll_event() {
             self.event(&g.name, e);
         }
         while let Some(row) = g.driver.pop_log() {
-            if row.reference.is_some() {
-                g.last_reference = row.reference;
-            }
-            if let Some(feed) = &self.feed {
-                let axes = match row.kind {
-                    LogKind::Pose => EgmAxes::Pose,
-                    _ => EgmAxes::Joint,
-                };
-                feed.push_egm_sample(
-                    RobotTime::from_duration(row.send_time),
-                    axes,
-                    g.last_reference,
-                    row.feedback,
-                    EgmTraceState::Running,
-                    std::mem::take(&mut g.speed_limited),
-                );
-            }
             self.row(&g.name, row);
+        }
+    }
+
+    /// One feed sample per motion cycle of a run: the reference in use and the measured
+    /// position, in joints or in the correction frame.
+    fn feed_run(&self, sp: &Setpoint, g: &mut EgmGuidance) {
+        if let Some(feed) = &self.feed {
+            let (reference, feedback) = g.driver.tracking();
+            let axes = match g.driver.mode() {
+                EgmMode::Pose => EgmAxes::Pose,
+                _ => EgmAxes::Joint,
+            };
+            feed.push_egm_sample(
+                sp.time,
+                axes,
+                reference,
+                feedback,
+                EgmTraceState::Running,
+                std::mem::take(&mut g.speed_limited),
+            );
         }
     }
 
@@ -155,6 +159,7 @@ impl EgmHook {
 impl CycleHook for EgmHook {
     fn after_tick(&mut self, sp: &Setpoint, exec: &mut Executor) {
         if let Some(g) = exec.guidance_as::<EgmGuidance>() {
+            self.feed_run(sp, g);
             self.drain_run(g);
             if let Some(timeout) = self.lockstep
                 && g.driver.awaiting_reply()
