@@ -42,13 +42,13 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 mod hook;
+mod host;
 mod seam;
 
 use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
 
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::event::EgmEvent;
-use crate::egm::log::LogRow;
 use crate::egm::pathcorr::{PathCorrConfig, Tracker};
 use crate::egm::registry::TrackerKind;
 use crate::egm::{CorrectionLink, DriverContext, EgmError, EgmId, EgmRegistry, EgmSource};
@@ -61,7 +61,7 @@ use super::condition::Condition;
 use super::handle::ControllerHandle;
 
 use hook::Request;
-pub use hook::{HookOptions, PathCorrHook, Report};
+pub use hook::{HookOptions, NamedLogRow, PathCorrHook, Report};
 use seam::{CorrectedMove, SeamCorrection};
 
 /// Requests that may wait for the hook (a sequence's moves plus begin and end).
@@ -86,22 +86,23 @@ impl Default for PathCorrOptions {
             hook: HookOptions {
                 lockstep: false,
                 reply_timeout: DEFAULT_REPLY_TIMEOUT,
-                log: false,
             },
         }
     }
 }
 
 /// The program side and the motion side of path correction for one controller; the
-/// motion side goes into the controller's cycle hook.
+/// motion side goes into the controller's cycle hook. `feed` reaches the trace and plot,
+/// `log` the EGM message log writer.
 pub fn path_correction(
     ctx: DriverContext,
     options: PathCorrOptions,
     feed: Option<Feed>,
+    log: Option<SyncSender<NamedLogRow>>,
 ) -> (PathCorr, PathCorrHook) {
     let (req_tx, req_rx) = mpsc::sync_channel(REQUEST_CAPACITY);
     let (rep_tx, rep_rx) = mpsc::sync_channel(REPORT_CAPACITY);
-    let hook = PathCorrHook::new(req_rx, rep_tx, feed, options.hook);
+    let hook = PathCorrHook::new(req_rx, rep_tx, feed, log, options.hook);
     let pc = PathCorr {
         ctx,
         options,
@@ -110,10 +111,25 @@ pub fn path_correction(
         active: None,
         failed: None,
         events: Vec::new(),
-        logs: Vec::new(),
         last_link: None,
     };
     (pc, hook)
+}
+
+/// [`path_correction`] with the EGM options of a controller: `lockstep` is the per-message
+/// wait for an external sensor's reply (`None`: no lockstep).
+pub fn path_correction_for(
+    ctx: &DriverContext,
+    lockstep: Option<std::time::Duration>,
+    feed: Option<Feed>,
+    log: Option<SyncSender<NamedLogRow>>,
+) -> (PathCorr, PathCorrHook) {
+    let mut options = PathCorrOptions::default();
+    if let Some(t) = lockstep {
+        options.hook.lockstep = true;
+        options.hook.reply_timeout = t;
+    }
+    path_correction(ctx.clone(), options, feed, log)
 }
 
 /// Why a corrected move failed.
@@ -172,8 +188,7 @@ pub struct PathCorr {
     reports: Receiver<Report>,
     active: Option<Active>,
     failed: Option<EgmError>,
-    events: Vec<EgmEvent>,
-    logs: Vec<LogRow>,
+    events: Vec<(String, EgmEvent)>,
     last_link: Option<Box<CorrectionLink>>,
 }
 
@@ -192,16 +207,11 @@ impl PathCorr {
         self.active.is_some()
     }
 
-    /// Events reported since the last call (rejected corrections, session events, 41822).
-    pub fn take_events(&mut self) -> Vec<EgmEvent> {
+    /// Events reported since the last call (rejected corrections, session events, 41822),
+    /// with the identity's name.
+    pub fn take_events(&mut self) -> Vec<(String, EgmEvent)> {
         self.pump();
         std::mem::take(&mut self.events)
-    }
-
-    /// EGM message log rows since the last call (with [`HookOptions::log`]).
-    pub fn take_log(&mut self) -> Vec<LogRow> {
-        self.pump();
-        std::mem::take(&mut self.logs)
     }
 
     /// The link of the last sequence that ended (its session statistics).
@@ -212,11 +222,10 @@ impl PathCorr {
     fn pump(&mut self) {
         loop {
             match self.reports.try_recv() {
-                Ok(Report::Event(e)) => self.events.push(e),
+                Ok(Report::Event(name, e)) => self.events.push((name.to_string(), e)),
                 Ok(Report::Failed(e)) => {
                     self.failed.get_or_insert(e);
                 }
-                Ok(Report::Log(row)) => self.logs.push(row),
                 Ok(Report::Ended(link)) => self.last_link = Some(link),
                 Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => return,
             }
@@ -344,7 +353,8 @@ impl PathCorr {
             source,
             &st.setpoint.joints,
         )?;
-        self.send(Request::Begin(Box::new((seam, link))))
+        let name: std::sync::Arc<str> = std::sync::Arc::from(plan.name.as_str());
+        self.send(Request::Begin(Box::new((seam, link, name))))
     }
 
     /// The corrected move `ticket` ends in a fine point: wait until the robot stands there,
@@ -372,6 +382,45 @@ impl PathCorr {
                 Err(err)
             }
         }
+    }
+
+    /// The fine point of the last move of a sequence was reached (`ok`; a sensor failure
+    /// reported meanwhile is the error), or waiting for it failed (the sequence is
+    /// abandoned, see [`PathCorr::abandon`]).
+    pub fn finish_sequence(
+        &mut self,
+        handle: &mut ControllerHandle,
+        registry: &mut EgmRegistry,
+        ok: bool,
+    ) -> Result<(), PathCorrError> {
+        self.pump();
+        if !ok {
+            self.abandon(handle, registry);
+            return Ok(());
+        }
+        self.end(registry, true)?;
+        match self.failed.take() {
+            Some(e) => Err(e.into()),
+            None => Ok(()),
+        }
+    }
+
+    /// The program ended or stopped: a sequence still open is abandoned; it did not end in
+    /// a fine point, which is returned as the event to log.
+    pub fn program_stopped(
+        &mut self,
+        handle: &mut ControllerHandle,
+        registry: &mut EgmRegistry,
+    ) -> Option<(String, EgmEvent)> {
+        let a = self.active.as_ref()?;
+        let name = a.name.clone();
+        let error = EgmError::PathCorrFinePoint {
+            name: name.clone(),
+            instruction: "EGMMoveL",
+            start: false,
+        };
+        self.abandon(handle, registry);
+        Some((name, error.event()))
     }
 
     /// The sensor's failure if one was reported (then the motion core is recovered: the

@@ -1,5 +1,6 @@
 //! The motion side of path correction: [`PathCorrHook`], a `CycleHook` that installs each corrected sequence into the executor, runs its sensor link every cycle, feeds measurements to the corrector and path-correction samples to the report.
 
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, SyncSender, TryRecvError, TrySendError};
 use std::time::Duration;
 
@@ -17,7 +18,7 @@ use super::seam::{SeamCorrection, rejection_kind};
 /// From the program side to the hook.
 pub(super) enum Request {
     /// Start a corrected sequence: install the correction, start exchanging with the sensor.
-    Begin(Box<(SeamCorrection, CorrectionLink)>),
+    Begin(Box<(SeamCorrection, CorrectionLink, Arc<str>)>),
     /// A move of the running sequence (sent before the move is queued).
     Move(Box<super::seam::CorrectedMove>),
     /// The sequence ended (its fine point was reached, or it was abandoned).
@@ -27,15 +28,16 @@ pub(super) enum Request {
 /// From the hook to the program side.
 #[derive(Debug)]
 pub enum Report {
-    /// An event for the event log (rejected corrections, session events).
-    Event(EgmEvent),
+    /// An event for the event log (rejected corrections, session events) of the identity.
+    Event(Arc<str>, EgmEvent),
     /// The sensor failed (`ERR_UDPUC_COMM`); the robot stops at its next corrected cycle.
     Failed(crate::egm::EgmError),
-    /// A row of the EGM message log.
-    Log(LogRow),
     /// The sequence ended; the link comes back for its statistics.
     Ended(Box<CorrectionLink>),
 }
+
+/// One EGM message log row of an identity (for `--egm-log`).
+pub type NamedLogRow = (Arc<str>, LogRow);
 
 /// Options of the motion side.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,8 +47,6 @@ pub struct HookOptions {
     pub lockstep: bool,
     /// The lockstep wait for one reply.
     pub reply_timeout: Duration,
-    /// Forward the EGM message log rows ([`Report::Log`]).
-    pub log: bool,
 }
 
 /// The motion side of path correction (see the module docs of `controller::pathcorr`).
@@ -54,8 +54,10 @@ pub struct PathCorrHook {
     requests: Receiver<Request>,
     reports: SyncSender<Report>,
     feed: Option<Feed>,
+    log: Option<SyncSender<NamedLogRow>>,
     options: HookOptions,
     link: Option<CorrectionLink>,
+    name: Arc<str>,
     dropped: u64,
 }
 
@@ -73,20 +75,23 @@ impl PathCorrHook {
         requests: Receiver<Request>,
         reports: SyncSender<Report>,
         feed: Option<Feed>,
+        log: Option<SyncSender<NamedLogRow>>,
         options: HookOptions,
     ) -> PathCorrHook {
         PathCorrHook {
             requests,
             reports,
             feed,
+            log,
             options,
             link: None,
+            name: Arc::from(""),
             dropped: 0,
         }
     }
 
-    /// Reports lost because the program side did not read them in time.
-    pub fn dropped_reports(&self) -> u64 {
+    /// Reports and log rows lost because their reader did not keep up.
+    pub fn dropped(&self) -> u64 {
         self.dropped
     }
 
@@ -94,6 +99,11 @@ impl PathCorrHook {
         if let Err(TrySendError::Full(_)) = self.reports.try_send(r) {
             self.dropped = self.dropped.saturating_add(1);
         }
+    }
+
+    fn event(&mut self, e: EgmEvent) {
+        let name = Arc::clone(&self.name);
+        self.report(Report::Event(name, e));
     }
 
     fn end(&mut self, now: RobotTime, exec: &mut Executor) {
@@ -110,14 +120,16 @@ impl PathCorrHook {
         }
     }
 
-    /// Events and log rows of the link to the program side.
+    /// Events of the link to the program side, log rows to the log writer.
     fn forward(&mut self, link: &mut CorrectionLink) {
         while let Some(e) = link.poll_event() {
-            self.report(Report::Event(e));
+            self.event(e);
         }
         while let Some(row) = link.pop_log() {
-            if self.options.log {
-                self.report(Report::Log(row));
+            if let Some(log) = &self.log
+                && let Err(TrySendError::Full(_)) = log.try_send((Arc::clone(&self.name), row))
+            {
+                self.dropped = self.dropped.saturating_add(1);
             }
         }
     }
@@ -131,9 +143,10 @@ impl CycleHook for PathCorrHook {
                     if self.link.is_some() {
                         self.end(now, exec);
                     }
-                    let (seam, link) = *b;
+                    let (seam, link, name) = *b;
                     drop(exec.set_path_correction(Some(Box::new(seam))));
                     self.link = Some(link);
+                    self.name = name;
                     if let Some(f) = &self.feed {
                         f.push_egm_state(now, EgmTraceState::Running);
                     }
@@ -142,10 +155,10 @@ impl CycleHook for PathCorrHook {
                     if let Some(seam) = exec.path_correction_as::<SeamCorrection>()
                         && !seam.push_move(*m)
                     {
-                        self.report(Report::Event(EgmEvent::new(
+                        self.event(EgmEvent::new(
                             crate::egm::EventKind::Busy,
                             "too many EGMMoveL/EGMMoveC queued in one corrected sequence",
-                        )));
+                        ));
                     }
                 }
                 Ok(Request::End) => self.end(now, exec),
@@ -209,10 +222,10 @@ impl CycleHook for PathCorrHook {
             );
         }
         if let Some(e) = rejected {
-            self.report(Report::Event(e));
+            self.event(e);
         }
         if let Some(err) = tick.failed {
-            self.report(Report::Event(err.event()));
+            self.event(err.event());
             self.report(Report::Failed(err));
         }
         self.forward(&mut link);

@@ -87,7 +87,7 @@ impl Rig {
         };
         let mut feed = Feed::new();
         let rx = feed.subscribe();
-        let (pc, hook) = path_correction(ctx, options, Some(feed));
+        let (pc, hook) = path_correction(ctx, options, Some(feed), None);
         let sps = Collect::default();
         let handle = ControllerHandle::start_with_hook(
             ControllerConfig::new(robot, [0.0; 6]),
@@ -453,9 +453,10 @@ fn absurd_corrections_are_rejected_with_an_event() {
     assert!((end - Vector3::new(1050.0, 20.0, 500.0)).norm() < 1e-6);
     let events = rig.pc.take_events();
     assert!(
-        events.iter().any(|e| e.number == 90132
+        events.iter().any(|(name, e)| name == "egmId1"
+            && e.number == 90132
             && e.detail
-                == "egmId1: path correction of 500.000 mm exceeds the limit of 100 mm; the previous correction stays in force"),
+                == "path correction of 500.000 mm exceeds the limit of 100 mm; the previous correction stays in force"),
         "{events:?}"
     );
 }
@@ -502,7 +503,7 @@ fn a_silent_sensor_gives_err_udpuc_comm() {
     // The motion core was recovered: the program may go on.
     assert!(!rig.handle.state().halted);
     assert_eq!(rig.reg.state(id).1, crate::egm::CorrState::Error);
-    assert!(rig.pc.take_events().iter().any(|e| e.number == 41822));
+    assert!(rig.pc.take_events().iter().any(|(_, e)| e.number == 41822));
     rig.move_j(target(1000.0, 20.0, 600.0));
     let _ = RobotTime::ZERO;
 }
