@@ -58,6 +58,7 @@ use crate::robot::command::MotionCommand;
 
 use super::ControllerError;
 use super::condition::Condition;
+use super::egm::LastMove;
 use super::handle::ControllerHandle;
 
 use hook::Request;
@@ -110,6 +111,7 @@ pub fn path_correction(
         reports: rep_rx,
         active: None,
         failed: None,
+        left: false,
         events: Vec::new(),
         last_link: None,
     };
@@ -188,6 +190,8 @@ pub struct PathCorr {
     reports: Receiver<Report>,
     active: Option<Active>,
     failed: Option<EgmError>,
+    /// The robot left the running sequence without a fine point (already an error).
+    left: bool,
     events: Vec<(String, EgmEvent)>,
     last_link: Option<Box<CorrectionLink>>,
 }
@@ -227,6 +231,7 @@ impl PathCorr {
                     self.failed.get_or_insert(e);
                 }
                 Ok(Report::Ended(link)) => self.last_link = Some(link),
+                Ok(Report::Left) => self.left = true,
                 Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => return,
             }
         }
@@ -251,6 +256,7 @@ impl PathCorr {
         id: EgmId,
         cmd: MotionCommand,
         no_corr: bool,
+        last: LastMove,
     ) -> Result<Ticket, PathCorrError> {
         let instruction = match &cmd {
             MotionCommand::MoveL(_) => "EGMMoveL",
@@ -267,6 +273,10 @@ impl PathCorr {
         if let Some(e) = self.failed.take() {
             self.abandon(handle, registry);
             return Err(e.into());
+        }
+        if self.left {
+            // The robot already stopped on that (the program handled its error).
+            self.abandon(handle, registry);
         }
         let args = cmd.args().clone();
         if !args.tool.robhold {
@@ -288,7 +298,7 @@ impl PathCorr {
         }
         let plan = registry.move_start(id, instruction)?;
         if self.active.is_none() {
-            if let Err(e) = self.begin(handle, &plan, instruction) {
+            if let Err(e) = self.begin(handle, &plan, instruction, last) {
                 registry.move_finished(id, false);
                 return Err(e);
             }
@@ -322,12 +332,13 @@ impl PathCorr {
         handle: &mut ControllerHandle,
         plan: &crate::egm::registry::MovePlan,
         instruction: &'static str,
+        last: LastMove,
     ) -> Result<(), PathCorrError> {
         let st = handle.state();
-        if st.last_done.is_none() {
+        if last == LastMove::None {
             return Err(EgmError::NoPreviousMove { instruction }.into());
         }
-        if !st.in_position() {
+        if last == LastMove::FlyBy || !st.in_position() {
             return Err(EgmError::PathCorrFinePoint {
                 name: plan.name.clone(),
                 instruction,
@@ -412,6 +423,12 @@ impl PathCorr {
         handle: &mut ControllerHandle,
         registry: &mut EgmRegistry,
     ) -> Option<(String, EgmEvent)> {
+        self.pump();
+        if self.left {
+            // Already reported as the error that stopped the robot.
+            self.abandon(handle, registry);
+            return None;
+        }
         let a = self.active.as_ref()?;
         let name = a.name.clone();
         let error = EgmError::PathCorrFinePoint {
@@ -459,6 +476,7 @@ impl PathCorr {
     /// goes back to CONNECTED with correction state ERROR.
     pub fn abandon(&mut self, handle: &mut ControllerHandle, registry: &mut EgmRegistry) {
         self.failed = None;
+        self.left = false;
         if self.active.is_some() {
             // Ignore a dead motion side: there is nothing left to stop.
             let _ = self.end(registry, false);

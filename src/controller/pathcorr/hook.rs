@@ -14,6 +14,10 @@ use crate::report::{EgmTraceState, Feed};
 use crate::robot::{ToolData, WobjData};
 
 use super::seam::{SeamCorrection, rejection_kind};
+use crate::egm::pathcorr::Rejection;
+
+/// Rejected corrections are reported at most this often.
+pub const REJECTION_REPEAT: Duration = Duration::from_secs(1);
 
 /// From the program side to the hook.
 pub(super) enum Request {
@@ -32,6 +36,9 @@ pub enum Report {
     Event(Arc<str>, EgmEvent),
     /// The sensor failed (`ERR_UDPUC_COMM`); the robot stops at its next corrected cycle.
     Failed(crate::egm::EgmError),
+    /// The robot left the sequence without a fine point and stopped (its motion error
+    /// reaches the program): the sequence is over.
+    Left,
     /// The sequence ended; the link comes back for its statistics.
     Ended(Box<CorrectionLink>),
 }
@@ -59,6 +66,8 @@ pub struct PathCorrHook {
     link: Option<CorrectionLink>,
     name: Arc<str>,
     dropped: u64,
+    last_rejection: Option<Duration>,
+    rejections_held: u32,
 }
 
 impl std::fmt::Debug for PathCorrHook {
@@ -87,6 +96,8 @@ impl PathCorrHook {
             link: None,
             name: Arc::from(""),
             dropped: 0,
+            last_rejection: None,
+            rejections_held: 0,
         }
     }
 
@@ -99,6 +110,27 @@ impl PathCorrHook {
         if let Err(TrySendError::Full(_)) = self.reports.try_send(r) {
             self.dropped = self.dropped.saturating_add(1);
         }
+    }
+
+    /// The event of a rejected correction, at most one per [`REJECTION_REPEAT`] (a sensor
+    /// that keeps sending bad values is reported once a second, with a count).
+    fn rejection(&mut self, now: Duration, r: &Rejection) -> Option<EgmEvent> {
+        if self
+            .last_rejection
+            .is_some_and(|t| now.saturating_sub(t) < REJECTION_REPEAT)
+        {
+            self.rejections_held = self.rejections_held.saturating_add(1);
+            return None;
+        }
+        let more = match std::mem::take(&mut self.rejections_held) {
+            0 => String::new(),
+            n => format!(" ({n} more since the last report)"),
+        };
+        self.last_rejection = Some(now);
+        Some(EgmEvent::new(
+            rejection_kind(r),
+            format!("{r}; the previous correction stays in force{more}"),
+        ))
     }
 
     fn event(&mut self, e: EgmEvent) {
@@ -147,6 +179,8 @@ impl CycleHook for PathCorrHook {
                     drop(exec.set_path_correction(Some(Box::new(seam))));
                     self.link = Some(link);
                     self.name = name;
+                    self.last_rejection = None;
+                    self.rejections_held = 0;
                     if let Some(f) = &self.feed {
                         f.push_egm_state(now, EgmTraceState::Running);
                     }
@@ -200,18 +234,13 @@ impl CycleHook for PathCorrHook {
         if let Some(c) = tick.correction
             && let Err(r) = seam.measurement(c.received_at.as_secs_f64(), c.pos, c.age_s())
         {
-            rejected = Some(EgmEvent::new(
-                rejection_kind(&r),
-                format!(
-                    "{}: {r}; the previous correction stays in force",
-                    link.name()
-                ),
-            ));
+            rejected = self.rejection(now, &r);
         }
         if let Some(err) = &tick.failed {
             seam.fail(err);
         }
         let measured = seam.take_measured();
+        let left = seam.take_left();
         if let (Some(a), Some(f)) = (fresh, &self.feed) {
             f.push_pathcorr_sample(
                 sp.time,
@@ -223,6 +252,9 @@ impl CycleHook for PathCorrHook {
         }
         if let Some(e) = rejected {
             self.event(e);
+        }
+        if left {
+            self.report(Report::Left);
         }
         if let Some(err) = tick.failed {
             self.event(err.event());

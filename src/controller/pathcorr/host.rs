@@ -74,11 +74,12 @@ impl<H: EgmParts + Host> EgmPathHost for H {
     ) -> Result<u64, HostError> {
         let instruction = instruction(&cmd);
         renumber(self, &mut cmd).ok_or_else(no_egm)?;
+        let last = self.last_move();
         let result = match self.egm_parts() {
             Some((egm, handle)) => {
                 let (pc, registry) = egm.path_corr();
                 match registry.lookup(ident) {
-                    Some(id) => pc.submit(handle, registry, id, cmd, no_corr),
+                    Some(id) => pc.submit(handle, registry, id, cmd, no_corr, last),
                     None => Err(EgmError::NotReserved { instruction }.into()),
                 }
             }

@@ -66,6 +66,8 @@ pub(super) struct SeamCorrection {
     /// The last measurement the TCP passed this cycle (the feed's seam value).
     measured_now: Option<PathOffset>,
     failure: Option<MotionError>,
+    /// The robot left the sequence without a fine point (the robot stopped).
+    left: bool,
 }
 
 impl SeamCorrection {
@@ -90,6 +92,7 @@ impl SeamCorrection {
             measured: VecDeque::with_capacity(MAX_MEASURED),
             measured_now: None,
             failure: None,
+            left: false,
         })
     }
 
@@ -131,6 +134,11 @@ impl SeamCorrection {
         }
         self.measured.push_back(scheduled);
         Ok(())
+    }
+
+    /// True once (taken) after the robot left the sequence without a fine point.
+    pub fn take_left(&mut self) -> bool {
+        std::mem::take(&mut self.left)
     }
 
     /// Stop the robot at the next corrected cycle with `error` (the sensor failed).
@@ -204,6 +212,7 @@ impl PathCorrection for SeamCorrection {
     }
 
     fn leave(&mut self, _now: RobotTime, instr: &InstrRef) -> Result<(), MotionError> {
+        self.left = true;
         let error = EgmError::PathCorrFinePoint {
             name: self.name.clone(),
             instruction: instr.name,

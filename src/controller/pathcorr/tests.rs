@@ -54,6 +54,7 @@ struct Rig {
     sps: Collect,
     feed: FeedRx,
     next_id: u64,
+    last: LastMove,
 }
 
 fn target(x: f64, y: f64, z: f64) -> RobTarget {
@@ -102,6 +103,7 @@ impl Rig {
             sps,
             feed: rx,
             next_id: 1,
+            last: LastMove::None,
         }
     }
 
@@ -132,6 +134,7 @@ impl Rig {
             }))
             .unwrap();
         self.handle.wait_until(Condition::InPos).unwrap();
+        self.last = LastMove::StopPoint;
     }
 
     fn egm_l(
@@ -147,9 +150,9 @@ impl Rig {
             target: t,
             conf_check: false,
         });
-        let ticket = self
-            .pc
-            .submit(&mut self.handle, &mut self.reg, id, cmd, no_corr)?;
+        let ticket =
+            self.pc
+                .submit(&mut self.handle, &mut self.reg, id, cmd, no_corr, self.last)?;
         if ticket.fine {
             self.pc.wait_fine(&mut self.handle, &mut self.reg, ticket)?;
         }
@@ -293,7 +296,7 @@ fn simulated_ltapp_seams_and_a_circle() {
     });
     let t = rig
         .pc
-        .submit(&mut rig.handle, &mut rig.reg, id, c, false)
+        .submit(&mut rig.handle, &mut rig.reg, id, c, false, LastMove::FlyBy)
         .unwrap();
     assert!(!t.fine);
     rig.egm_l(id, target(1400.0, 20.0, 500.0), ZoneData::FINE, false)
@@ -355,6 +358,7 @@ fn the_sequence_must_start_and_end_in_a_fine_point() {
     assert!(e.to_string().contains("cannot be an EGM movement"), "{e}");
     rig.move_j(target(1000.0, 20.0, 500.0));
     // From a fly-by point.
+    rig.last = LastMove::FlyBy;
     let args = rig.args(100.0, z5());
     rig.handle
         .submit(MotionCommand::MoveL(MoveL {
@@ -378,6 +382,7 @@ fn the_sequence_must_start_and_end_in_a_fine_point() {
         "a refused start leaves the identity connected"
     );
     rig.handle.wait_until(Condition::InPos).unwrap();
+    rig.last = LastMove::StopPoint;
     // Ending with a fly-by point, then a plain MoveL: the robot stops.
     rig.egm_l(id, target(1100.0, 20.0, 500.0), z5(), false)
         .unwrap();
@@ -452,6 +457,16 @@ fn absurd_corrections_are_rejected_with_an_event() {
     let end = pos(rig.setpoints().last().unwrap());
     assert!((end - Vector3::new(1050.0, 20.0, 500.0)).norm() < 1e-6);
     let events = rig.pc.take_events();
+    // Once a second (about 5 s of motion), not once per message (every 48 ms).
+    let n = events.iter().filter(|(_, e)| e.number == 90132).count();
+    assert!((4..=6).contains(&n), "{events:?}");
+    assert!(
+        events[1]
+            .1
+            .detail
+            .ends_with("(20 more since the last report)"),
+        "{events:?}"
+    );
     assert!(
         events.iter().any(|(name, e)| name == "egmId1"
             && e.number == 90132
