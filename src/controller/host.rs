@@ -40,6 +40,8 @@ pub struct ControllerHost {
     modes: MotionModes,
     /// Id of the last move handed to the controller (ids start at 1).
     last_id: u64,
+    /// Id of the last move the controller accepted (refused moves never run).
+    last_accepted: u64,
     /// Moves up to this id were dropped when the robot stopped on an error: waits for them
     /// are over.
     void_up_to: u64,
@@ -77,6 +79,7 @@ impl ControllerHost {
             io: VirtualHost::new(),
             modes: MotionModes::default(),
             last_id: 0,
+            last_accepted: 0,
             void_up_to: 0,
             submitted: 0,
             errors: Vec::new(),
@@ -234,7 +237,7 @@ impl ControllerHost {
 
     /// True when every move handed to the controller is complete (or was dropped).
     fn all_done(&self, st: &MotionState) -> bool {
-        self.last_id <= self.void_up_to || st.done(self.last_id)
+        self.last_accepted <= self.void_up_to || st.done(self.last_accepted)
     }
 }
 
@@ -265,10 +268,18 @@ impl Host for ControllerHost {
         let start = self.state_checked()?;
         let now = self.now();
         if beyond_limit && now >= target {
-            return Err(HostError::fatal(format!(
-                "the program waits beyond the virtual time limit of {target} s \
-                 (nothing in a virtual run can end this wait; use --max-time to raise it)"
-            )));
+            let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
+            return Err(HostError::fatal(if realtime {
+                format!(
+                    "the program waits beyond the time limit of {target} s \
+                     (use --max-time to raise it)"
+                )
+            } else {
+                format!(
+                    "the program waits beyond the virtual time limit of {target} s \
+                     (nothing in a virtual run can end this wait; use --max-time to raise it)"
+                )
+            }));
         }
         if target <= now {
             return Ok(now);
@@ -320,6 +331,9 @@ impl Host for ControllerHost {
         let stop_point = zone_of(&cmd).finep;
         let result = self.ctl()?.submit(cmd);
         self.pump_events();
+        if result.is_ok() {
+            self.last_accepted = id;
+        }
         match result {
             Ok(()) => {
                 self.submitted += 1;
@@ -463,3 +477,6 @@ fn set_id(cmd: &mut MotionCommand, id: u64) {
         MotionCommand::MoveC(m) => m.args.id = id,
     }
 }
+
+#[cfg(test)]
+mod tests;

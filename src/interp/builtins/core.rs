@@ -5,7 +5,7 @@
 use super::{Ctx, Registry};
 use crate::interp::errnum;
 use crate::interp::error::{Exec, Unwind};
-use crate::interp::host::Output;
+use crate::interp::host::{MotionWait, Output};
 use crate::interp::value::Value;
 
 /// Register this domain.
@@ -98,6 +98,10 @@ fn wait_time(cx: &mut Ctx<'_>) -> Exec<Value> {
             format!("WaitTime {t}: the time must be 0 or more"),
         ));
     }
+    if cx.present(0) {
+        // `\InPos`: the robot must stand still before the time starts.
+        super::motion::wait_for(cx, MotionWait::InPos)?;
+    }
     let deadline = cx.now() + t;
     let (p, span) = (cx.p, cx.span);
     cx.it.wait(p, span, Some(deadline), None, 0.0)?;
@@ -107,12 +111,20 @@ fn wait_time(cx: &mut Ctx<'_>) -> Exec<Value> {
 fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
     // The condition was evaluated once as an argument; re-evaluate it through the call's
     // IR expression on every poll.
+    if cx.present(0) {
+        // `\InPos`: the robot must stand still before the condition is looked at.
+        super::motion::wait_for(cx, MotionWait::InPos)?;
+    }
     let max = cx.opt_f64(2)?;
     let poll = cx.opt_f64(4)?.unwrap_or(0.1).max(0.004);
     let deadline = max.map(|m| cx.now() + m);
     let cond_expr = cx.arg_expr(1);
-    let first = cx.bool(1)?;
     let (p, span) = (cx.p, cx.span);
+    let first = match cond_expr {
+        // After waiting for the robot the condition is looked at again.
+        Some(e) if cx.present(0) => cx.it.eval_bool(p, e)?,
+        _ => cx.bool(1)?,
+    };
     let done = if first {
         true
     } else {
