@@ -232,25 +232,6 @@ fn plots_are_written() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// The manual's UdpUc example gets past its `MoveAbsJ` and stops at the first EGM
-/// instruction, which issue 5 implements.
-#[test]
-fn manual_udpuc_program_moves_then_stops_at_egm() {
-    let (code, stdout, stderr) = rapidvc(
-        &root(),
-        &["run", "programs/manual/position_guidance_udpuc.mod"],
-    );
-    assert_eq!(code, 1, "{stdout}{stderr}");
-    assert!(
-        stderr.contains("`EGMReset` is not yet supported by rapidvc (EGM: issue 5)"),
-        "{stderr}"
-    );
-    assert!(
-        stderr.contains("final joints [0.00, 0.00, 0.00, 0.00, 40.00, 0.00]"),
-        "{stderr}"
-    );
-}
-
 #[test]
 fn realtime_run_moves_the_robot() {
     let dir = scratch("realtime");

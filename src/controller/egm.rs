@@ -653,7 +653,12 @@ impl EgmController {
                 Ok(())
             }
             Some(Ok(_)) => Ok(()),
-            Some(Err(RunFailure::Egm(e))) if !fatal => Err(EgmFailure::Egm(e)),
+            Some(Err(RunFailure::Egm(e))) if !fatal => {
+                // A catchable error still goes into the event log (41822, …), also when an
+                // ERROR handler deals with it.
+                self.events.push((run.name.clone(), e.event()));
+                Err(EgmFailure::Egm(e))
+            }
             Some(Err(RunFailure::Egm(e))) => Err(EgmFailure::Fatal(format!(
                 "{} (after {} \\NoWaitCond every EGM error stops the program)",
                 e.event(),

@@ -53,9 +53,10 @@ pub const MAX_QUEUE_CAPACITY: usize = 64;
 /// Which senders are accepted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SourceFilter {
-    /// Only datagrams from the configured remote IP. The port is free until the first
-    /// accepted reference (so NAT may change it); from then on the session keeps that
-    /// sender, and a second sender on another port is dropped too. Default.
+    /// Only datagrams from the configured remote IP. The configured remote port is always
+    /// accepted, and takes the session over from any other sender. Another port is accepted
+    /// only until the first accepted reference (so NAT may change it): from then on the
+    /// session keeps that sender, and a second sender on another port is dropped. Default.
     #[default]
     RemoteIp,
     /// Any sender (NAT, containers); references from all of them are used.
@@ -585,6 +586,9 @@ impl EgmSession {
                 self.config.remote.ip()
             ));
         }
+        if src.port() == self.config.remote.port() {
+            return None;
+        }
         match self.sensor {
             Some(sensor) if sensor.port() != src.port() => Some(format!(
                 "this session's sensor is {sensor} (a second sender)"
@@ -595,7 +599,9 @@ impl EgmSession {
 
     fn accept(&mut self, now: Duration, src: SocketAddr, reference: SensorReference) {
         self.stats.accepted += 1;
-        if self.sensor.is_none() {
+        // The configured remote port always takes the session over (a sender on another
+        // port that answered first is dropped from then on).
+        if self.sensor.is_none() || src.port() == self.config.remote.port() {
             self.sensor = Some(src);
         }
         if let Some(sent) = self.last_transmit {

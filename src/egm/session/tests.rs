@@ -170,13 +170,25 @@ fn other_senders_are_dropped_counted_and_reported_once() {
         Outcome::Accepted
     );
     // A second sender on another port of the same IP: dropped.
-    let second: SocketAddr = "127.0.0.1:6510".parse().unwrap();
+    let second: SocketAddr = "127.0.0.1:4321".parse().unwrap();
     assert_eq!(
         s.handle_datagram(MS, second, &joint_reply(7.0)),
         Outcome::Dropped(DropReason::WrongSource)
     );
     assert_eq!(j1(&s.poll_reference().unwrap()), 1.0);
     assert_eq!(s.stats().wrong_source, 6);
+    // The configured remote port always takes over (an intruder on the sensor's host that
+    // answered first cannot lock the real sensor out); the NAT sender is dropped from then on.
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &joint_reply(3.0)),
+        Outcome::Accepted
+    );
+    assert_eq!(
+        s.handle_datagram(MS, sensor, &joint_reply(8.0)),
+        Outcome::Dropped(DropReason::WrongSource)
+    );
+    assert_eq!(j1(&s.poll_reference().unwrap()), 3.0);
+    assert_eq!(s.stats().wrong_source, 7);
     let ev = events(&mut s);
     assert_eq!(ev.len(), 1, "{ev:?}");
     assert_eq!(ev[0].number, 90101);
