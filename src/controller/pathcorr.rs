@@ -3,15 +3,20 @@
 //! # Wiring
 //!
 //! ```text
-//! let (mut pc, hook) = pathcorr::path_correction(ctx, PathCorrOptions::default(), feed);
-//! ControllerHandle::start_with_hook(config, sinks, Some(Box::new(hook)))   // or chained
-//! EGMMoveL / EGMMoveC → pc.submit(&mut handle, &mut registry, id, cmd, no_corr)?
-//!                        then, for a fine point: pc.wait_fine(&mut handle, &mut registry, ticket)?
-//! other move while a sequence is open → pc.check_other_move(instruction)?
-//! EGMReset / EGMStop / PP to Main → pc.abandon(&mut handle, &mut registry)
-//! program end → pc.close(&mut handle, &mut registry)?
+//! let (mut pc, hook) = pathcorr::path_correction(ctx, options, feed, log);
+//! ControllerHandle::start_with_hook(config, sinks, Some(Box::new(hook)))   // or inside another hook
+//! EGMMoveL / EGMMoveC → ticket = pc.submit(&mut handle, &mut registry, id, cmd, no_corr, last_move)?
+//!     fine point: wait for Done(ticket.cmd_id), then pc.finish_sequence(&mut handle, &mut registry, ok)?
+//!     (or pc.wait_fine(&mut handle, &mut registry, ticket)? without an interpreter)
+//! other move while a sequence is open → pc.check_other_move(instruction)? (the executor refuses it anyway)
+//! error, EGMStop, PP to Main → pc.abandon(&mut handle, &mut registry)
+//! program end or stop → pc.program_stopped(&mut handle, &mut registry) (an event if still open)
 //! events for the event log: pc.take_events()
 //! ```
+//!
+//! In `rapidvc run` the EGM controller (`controller::egm`) owns the program side and its cycle
+//! hook the motion side; `ControllerHost` offers the interpreter's `EgmPathHost` through the
+//! blanket implementation in `pathcorr/host.rs`.
 //!
 //! # What happens
 //!
@@ -52,7 +57,6 @@ use crate::egm::event::EgmEvent;
 use crate::egm::pathcorr::{PathCorrConfig, Tracker};
 use crate::egm::registry::TrackerKind;
 use crate::egm::{CorrectionLink, DriverContext, EgmError, EgmId, EgmRegistry, EgmSource};
-use crate::motion::MotionError;
 use crate::report::Feed;
 use crate::robot::command::MotionCommand;
 
@@ -485,35 +489,6 @@ impl PathCorr {
             }
         }
     }
-
-    /// The program ends: a sequence still open did not end in a fine point. The robot is
-    /// let finish its queued moves first.
-    pub fn close(
-        &mut self,
-        handle: &mut ControllerHandle,
-        registry: &mut EgmRegistry,
-    ) -> Result<(), PathCorrError> {
-        let Some(a) = &self.active else {
-            return Ok(());
-        };
-        let error = EgmError::PathCorrFinePoint {
-            name: a.name.clone(),
-            instruction: "EGMMoveL",
-            start: false,
-        };
-        let waited = handle.wait_until(Condition::InPos);
-        self.pump();
-        self.abandon(handle, registry);
-        match waited {
-            Ok(_) | Err(ControllerError::NeverSatisfied(_)) => Err(error.into()),
-            Err(e) => Err(e.into()),
-        }
-    }
-}
-
-/// The motion error of a path-correction stop (for hosts that map motion events).
-pub fn is_path_correction_stop(e: &MotionError) -> bool {
-    matches!(e, MotionError::PathCorrection { .. })
 }
 
 #[cfg(test)]
