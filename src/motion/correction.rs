@@ -22,7 +22,9 @@
 //! answering); the executor logs it and halts as for any motion error.
 //!
 //! Only robot-held tools are corrected (the sensor is robot-mounted): the TCP offset is
-//! applied to the flange. The implementation must not block, sleep or panic; it runs inside
+//! applied to the flange. A corrected cycle with a non-zero offset solves the inverse
+//! kinematics, which allocates (the solver returns its solutions in a `Vec`), as pose-mode
+//! EGM guidance does; uncorrected cycles and zero offsets do not. The implementation must not block, sleep or panic; it runs inside
 //! the motion cycle. The shell reaches it between cycles through
 //! [`super::Executor::path_correction_as`] to hand it sensor data and read what it applied.
 

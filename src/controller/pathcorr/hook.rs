@@ -210,22 +210,24 @@ impl CycleHook for PathCorrHook {
             self.link = Some(link);
             return;
         };
-        let (tool, wobj) = seam
-            .current_move()
-            .map(|m| (m.tool, m.wobj.clone()))
-            .unwrap_or_else(|| (ToolData::tool0(), WobjData::wobj0()));
         let applied = seam.applied();
         let fresh = applied.filter(|a| a.time == sp.time);
         let look_ahead = match seam.sensing() {
             crate::egm::pathcorr::Tracker::Latr { look_ahead } => look_ahead,
             crate::egm::pathcorr::Tracker::Aptr => 0.0,
         };
+        // Borrowed, not cloned: nothing here allocates per cycle.
+        let (default_tool, default_wobj) = (ToolData::tool0(), WobjData::wobj0());
+        let (tool, wobj) = match seam.current_move() {
+            Some(m) => (&m.tool, &m.wobj),
+            None => (&default_tool, &default_wobj),
+        };
         let tick = link.tick(
             now,
             &CorrectionInput {
                 commanded: sp.joints,
-                tool: &tool,
-                wobj: &wobj,
+                tool,
+                wobj,
                 tcp_s: applied.map_or(0.0, |a| a.s),
                 look_ahead,
             },
