@@ -13,6 +13,7 @@ pub mod handle;
 pub mod hook;
 pub mod host;
 pub mod monotonic;
+pub mod pathcorr;
 pub mod priority;
 mod realtime;
 mod rt;

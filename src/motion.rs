@@ -12,6 +12,7 @@
 
 pub mod clock;
 pub mod core;
+pub mod correction;
 pub mod event;
 pub mod executor;
 pub mod guidance;
@@ -24,6 +25,7 @@ pub mod state;
 
 pub use self::core::{EnqueueError, MotionCore};
 pub use clock::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
+pub use correction::{PathCorrection, PathPoint};
 pub use event::{InstrRef, MotionError, MotionEvent, PathPlace, Severity};
 pub use executor::Executor;
 pub use guidance::{ExternalGuidance, GuidanceStep};

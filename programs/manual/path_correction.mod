@@ -21,20 +21,22 @@ PERS tooldata
 VAR pose PP := [[0,-3,2],[1,0,0,0]];
 VAR egmident egmId1;
 ! Not in the manual (rapidvc): the targets of the path, which the manual leaves undeclared.
-! A straight seam along x in front of the default robot (IRB 2600-12/1.85), 20 mm left of
-! its axis-1 plane at z = 500 mm, with tool tEGM pointing straight down ([0,0,1,0]):
-! approach p100 -> p110 -> p120, seam start p130 (fine), p140, p150, a half circle through
-! p160 to p165, seam end p170 (fine), retract p180. Configuration [0,0,-1,1] for all.
-CONST robtarget p100:=[[1000,20,700],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p110:=[[1000,20,600],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p120:=[[1000,20,520],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p130:=[[1000,20,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p140:=[[1100,20,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p150:=[[1200,20,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p160:=[[1250,70,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p165:=[[1300,20,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p170:=[[1400,20,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-CONST robtarget p180:=[[1400,20,650],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+! A seam along +y in front of the default robot (IRB 2600-12/1.85), 1000 mm out at
+! z = 500 mm, with tool tEGM pointing straight down ([0,0,1,0]): approach p100 -> p110 ->
+! p120, seam start p130 (fine), p140, p150, a half circle through p160 to p165, seam end p170
+! (fine), retract p180. Configuration [0,0,-1,1] for all. Running along +y puts the
+! look-ahead sensor tLaser (50 mm beside tEGM's TCP, along the flange's y axis) 50 mm ahead of
+! the TCP on the straight parts, as a laser seam tracker is mounted.
+CONST robtarget p100:=[[1000,50,700],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p110:=[[1000,50,600],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p120:=[[1000,50,520],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p130:=[[1000,50,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p140:=[[1000,150,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p150:=[[1000,250,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p160:=[[950,300,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p165:=[[1000,350,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p170:=[[1000,450,500],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+CONST robtarget p180:=[[1000,450,650],[0,0,1,0],[0,0,-1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
 ! Protocol: LTAPP
 ! Example for a look ahead sensor, e.g. Laser Tracker
 PROC Part_2_EGM_OT_Pth_1()

@@ -56,6 +56,7 @@ mod hook;
 mod host;
 mod logger;
 
+use super::pathcorr::{PathCorr, path_correction_for};
 use guidance::{EgmGuidance, RunControl};
 pub use hook::EgmHook;
 use hook::{NamedEvent, Shared, StreamSlot};
@@ -197,6 +198,8 @@ pub struct EgmController {
     events: Vec<(String, EgmEvent)>,
     logger: Option<Logger>,
     capped_noted: bool,
+    /// EGMMoveL/EGMMoveC (`controller::pathcorr`).
+    pathcorr: PathCorr,
 }
 
 impl std::fmt::Debug for EgmController {
@@ -227,6 +230,13 @@ impl EgmController {
             }
             None => (None, None),
         };
+        let ctx = DriverContext {
+            robot,
+            signals,
+            options: setup.driver,
+        };
+        let (pathcorr, pathcorr_hook) =
+            path_correction_for(&ctx, setup.lockstep, setup.feed.clone(), log_tx.clone());
         let hook = EgmHook {
             shared: Arc::clone(&shared),
             events: events_tx,
@@ -234,14 +244,11 @@ impl EgmController {
             log: log_tx,
             feed: setup.feed.clone(),
             lockstep: setup.lockstep,
+            pathcorr: pathcorr_hook,
         };
         let controller = EgmController {
             registry: EgmRegistry::new(setup.registry),
-            ctx: DriverContext {
-                robot,
-                signals,
-                options: setup.driver,
-            },
+            ctx,
             shared,
             events_rx,
             retired_rx,
@@ -250,8 +257,14 @@ impl EgmController {
             events: Vec::new(),
             logger,
             capped_noted: false,
+            pathcorr,
         };
         Ok((controller, hook))
+    }
+
+    /// Path correction and the registry it works with (EGMMoveL/EGMMoveC).
+    pub fn path_corr(&mut self) -> (&mut PathCorr, &mut EgmRegistry) {
+        (&mut self.pathcorr, &mut self.registry)
     }
 
     /// The registry (identities and their states).
@@ -265,6 +278,7 @@ impl EgmController {
         while let Ok(e) = self.events_rx.try_recv() {
             self.events.push((e.name.to_string(), e.event));
         }
+        self.events.extend(self.pathcorr.take_events());
         std::mem::take(&mut self.events)
     }
 
@@ -555,6 +569,9 @@ impl EgmController {
             } else {
                 self.run = None;
             }
+        }
+        if let Some(e) = self.pathcorr.program_stopped(handle, &mut self.registry) {
+            self.events.push(e);
         }
         self.registry.abandon_all();
         self.streams().clear();

@@ -452,6 +452,10 @@ impl Host for ControllerHost {
     fn egm(&mut self) -> Option<&mut dyn EgmHost> {
         if self.egm.is_some() { Some(self) } else { None }
     }
+
+    fn egm_path(&mut self) -> Option<&mut dyn crate::interp::host::EgmPathHost> {
+        if self.egm.is_some() { Some(self) } else { None }
+    }
 }
 
 /// The zone of a command.

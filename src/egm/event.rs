@@ -97,6 +97,10 @@ pub enum EventKind {
     NoPreviousMove,
     /// 90130: an EGM setup or activation that cannot be used (frames, signals, trackers).
     BadSetup,
+    /// 90131: a path-corrected sequence (EGMMoveL/EGMMoveC) that does not end in a fine point.
+    NotEndedInFinePoint,
+    /// 90132: a path correction the controller does not use (too large, too old).
+    CorrectionRejected,
 }
 
 impl EventKind {
@@ -133,6 +137,8 @@ impl EventKind {
             EventKind::NotInFinePoint => 90128,
             EventKind::NoPreviousMove => 90129,
             EventKind::BadSetup => 90130,
+            EventKind::NotEndedInFinePoint => 90131,
+            EventKind::CorrectionRejected => 90132,
         }
     }
 
@@ -169,6 +175,8 @@ impl EventKind {
             EventKind::NotInFinePoint => "EGM movement not started in a fine point",
             EventKind::NoPreviousMove => "EGM movement before any RAPID movement",
             EventKind::BadSetup => "EGM setup error",
+            EventKind::NotEndedInFinePoint => "EGM path correction not ended in a fine point",
+            EventKind::CorrectionRejected => "EGM path correction rejected",
         }
     }
 }

@@ -5,6 +5,7 @@
 mod clock;
 mod core;
 mod egm;
+mod egm_path;
 mod interrupts;
 mod io;
 mod math;
@@ -74,6 +75,7 @@ impl Registry {
         interrupts::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
+        egm_path::register(&mut r);
         r
     }
 

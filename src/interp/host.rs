@@ -44,7 +44,9 @@ use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 
 mod egm;
+mod egm_path;
 pub use egm::{EgmHost, EgmRun};
+pub use egm_path::EgmPathHost;
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -270,6 +272,11 @@ pub trait Host {
     /// The EGM capability, when this controller has one (the EGM instructions fail with
     /// "not supported by this controller" otherwise).
     fn egm(&mut self) -> Option<&mut dyn EgmHost> {
+        None
+    }
+
+    /// The EGM path-correction capability (EGMMoveL, EGMMoveC), when this controller has one.
+    fn egm_path(&mut self) -> Option<&mut dyn EgmPathHost> {
         None
     }
 }

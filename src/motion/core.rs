@@ -7,6 +7,7 @@ use crate::robot::command::MotionCommand;
 use crate::robot::{JointsDeg, Robot, ToolData};
 
 use super::clock::RobotTime;
+use super::correction::PathCorrection;
 use super::event::{InstrRef, MotionError, MotionEvent, Severity};
 use super::executor::Executor;
 use super::guidance::ExternalGuidance;
@@ -178,5 +179,19 @@ impl MotionCore {
         let g = self.exec.stop_external();
         self.planner.set_start(self.exec.setpoint().joints);
         g
+    }
+
+    /// Install (or remove) the path correction of planned moves (see
+    /// [`Executor::set_path_correction`]).
+    pub fn set_path_correction(
+        &mut self,
+        correction: Option<Box<dyn PathCorrection>>,
+    ) -> Option<Box<dyn PathCorrection>> {
+        self.exec.set_path_correction(correction)
+    }
+
+    /// The installed path correction as its concrete type.
+    pub fn path_correction_as<T: PathCorrection>(&mut self) -> Option<&mut T> {
+        self.exec.path_correction_as::<T>()
     }
 }

@@ -113,6 +113,20 @@ pub enum MotionError {
     /// External guidance may only start at a stop point.
     #[error("external guidance must start at a fine point (the robot is moving)")]
     NotAtStopPoint,
+    /// Path correction stopped the robot (`motion::correction`): the sensor stopped
+    /// answering, a corrected sequence that does not end in a fine point, … The event
+    /// comes from the correction's owner (EGM).
+    #[error("{detail}")]
+    PathCorrection {
+        /// Event-log number.
+        number: u32,
+        /// Event-log title.
+        title: &'static str,
+        /// What happened.
+        detail: String,
+        /// The RAPID error a handler can catch (`ERR_UDPUC_COMM`), if any.
+        rapid_error: Option<&'static str>,
+    },
 }
 
 impl MotionError {
@@ -130,6 +144,7 @@ impl MotionError {
             MotionError::ConfigurationChanged { .. } => Some((50050, "Position outside reach")),
             MotionError::CircleUncertain { .. } => Some((50063, "Circle uncertain")),
             MotionError::CornerPathFailure { .. } => Some((50024, "Corner path failure")),
+            MotionError::PathCorrection { number, title, .. } => Some((*number, title)),
             MotionError::JointSpeed { .. } => None,
             MotionError::InvalidData { .. }
             | MotionError::NotSupported { .. }
@@ -146,6 +161,7 @@ impl MotionError {
             MotionError::ConfigurationChanged { .. } | MotionError::JointSpeed { .. } => {
                 Some("ERR_ROBLIMIT")
             }
+            MotionError::PathCorrection { rapid_error, .. } => *rapid_error,
             _ => None,
         }
     }

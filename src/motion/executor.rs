@@ -8,9 +8,12 @@
 use std::collections::VecDeque;
 use std::time::Duration;
 
+use nalgebra::Translation3;
+
 use crate::robot::{JointsDeg, Robot, ToolData};
 
 use super::clock::RobotTime;
+use super::correction::{PathCorrection, PathPoint, Track};
 use super::event::{EventLog, InstrRef, MotionError, MotionEvent, PathPlace, Severity};
 use super::guidance::{ExternalGuidance, GuidanceStep};
 use super::limits::{self, SPEED_SUPERVISION_SLACK};
@@ -57,6 +60,8 @@ pub struct Executor {
     setpoint: Setpoint,
     last_done: Option<InstrRef>,
     halted: bool,
+    correction: Option<Box<dyn PathCorrection>>,
+    track: Option<Track>,
 }
 
 impl std::fmt::Debug for Executor {
@@ -97,6 +102,8 @@ impl Executor {
             },
             last_done: None,
             halted: false,
+            correction: None,
+            track: None,
             robot,
         }
     }
@@ -238,6 +245,28 @@ impl Executor {
         self.retired.take()
     }
 
+    /// Install (or with `None` remove) the path correction of planned moves
+    /// (`motion::correction`); returns the previous one. Takes effect with the next sample.
+    pub fn set_path_correction(
+        &mut self,
+        correction: Option<Box<dyn PathCorrection>>,
+    ) -> Option<Box<dyn PathCorrection>> {
+        self.track = None;
+        std::mem::replace(&mut self.correction, correction)
+    }
+
+    /// The installed path correction, as its concrete type (between cycles: hand it sensor
+    /// data, read what it applied).
+    pub fn path_correction_as<T: PathCorrection>(&mut self) -> Option<&mut T> {
+        let c: &mut dyn std::any::Any = self.correction.as_mut()?.as_mut();
+        c.downcast_mut::<T>()
+    }
+
+    /// True while a path correction is installed.
+    pub fn has_path_correction(&self) -> bool {
+        self.correction.is_some()
+    }
+
     /// One motion cycle at robot time `now`.
     pub fn tick(&mut self, now: RobotTime) -> Setpoint {
         let prev = self.setpoint;
@@ -260,13 +289,14 @@ impl Executor {
         } else {
             match self.next_sample() {
                 Some(out) => {
-                    let instr = self.active_instr().or(self.last_done);
-                    (
-                        Some(out.sample.q),
-                        out.at_stop_point,
-                        instr,
-                        Some(out.sample.tcp),
-                    )
+                    let mut instr = self.active_instr().or(self.last_done);
+                    match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
+                        Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
+                        Err(error) => {
+                            self.fault(instr, error);
+                            (None, true, instr, None)
+                        }
+                    }
                 }
                 None => (None, true, None, None),
             }
@@ -320,9 +350,103 @@ impl Executor {
         Ok(())
     }
 
+    /// Apply the path correction to a planned sample (`motion::correction`): the sample
+    /// itself when it is not corrected.
+    fn correct(
+        &mut self,
+        now: RobotTime,
+        instr: &mut Option<InstrRef>,
+        sample: Sample,
+        at_stop_point: bool,
+        prev: &Setpoint,
+    ) -> Result<Sample, MotionError> {
+        let (Some(corr), Some(instr)) = (self.correction.as_mut(), instr.as_mut()) else {
+            self.track = None;
+            return Ok(sample);
+        };
+        if !corr.corrects(instr) {
+            let open = self.track.is_some_and(|t| t.open);
+            self.track = None;
+            if open {
+                corr.leave(now, instr)?;
+            }
+            return Ok(sample);
+        }
+        instr.name = corr.rename(instr);
+        let flange = self.robot.fk(&sample.q);
+        let here = sample.tcp.translation.vector;
+        let (track, first) = match self.track {
+            Some(t) if t.open => (t, false),
+            _ => {
+                // The sequence starts at the fine point the robot stands in: the previous
+                // setpoint, with this move's tool (flange⁻¹ · TCP of the sample).
+                let tool = flange.inverse() * sample.tcp;
+                let start = self.robot.fk(&prev.joints) * tool;
+                let last = start.translation.vector;
+                let last = if last.iter().all(|c| c.is_finite()) {
+                    last
+                } else {
+                    here
+                };
+                (
+                    Track {
+                        s: 0.0,
+                        last,
+                        open: true,
+                    },
+                    true,
+                )
+            }
+        };
+        let step = here - track.last;
+        let len = step.norm();
+        let s = if len.is_finite() {
+            track.s + len
+        } else {
+            track.s
+        };
+        self.track = Some(Track {
+            s,
+            last: here,
+            open: !at_stop_point,
+        });
+        let point = PathPoint {
+            instr: *instr,
+            s,
+            tcp: sample.tcp,
+            flange,
+            step,
+            first,
+            stop_point: at_stop_point,
+        };
+        let offset = corr.offset(now, &point)?;
+        if offset.iter().all(|c| *c == 0.0) {
+            return Ok(sample);
+        }
+        if !offset.iter().all(|c| c.is_finite()) {
+            return Err(MotionError::InvalidData {
+                what: "path correction offset (mm)",
+                value: offset.norm(),
+            });
+        }
+        let shift = Translation3::from(offset);
+        let q = self
+            .robot
+            .ik_nearest(&(shift * flange), &prev.joints)
+            .map_err(|error| MotionError::Kinematics {
+                error,
+                place: PathPlace::Cycle,
+            })?;
+        Ok(Sample {
+            q,
+            tcp: shift * sample.tcp,
+        })
+    }
+
     /// Stop everything after a supervision error.
     fn fault(&mut self, instr: Option<InstrRef>, error: MotionError) {
         self.halted = true;
+        self.track = None;
         self.clear();
         if let Some(e) = self.external.take() {
             self.retired = Some(e.guidance);

@@ -65,6 +65,8 @@ pub struct EgmHook {
     pub(crate) log: Option<SyncSender<NamedRow>>,
     pub(crate) feed: Option<Feed>,
     pub(crate) lockstep: Option<Duration>,
+    /// EGMMoveL/EGMMoveC (`controller::pathcorr`).
+    pub(crate) pathcorr: crate::controller::pathcorr::PathCorrHook,
 }
 
 impl std::fmt::Debug for EgmHook {
@@ -157,7 +159,12 @@ impl EgmHook {
 }
 
 impl CycleHook for EgmHook {
+    fn before_tick(&mut self, now: RobotTime, exec: &mut Executor) {
+        self.pathcorr.before_tick(now, exec);
+    }
+
     fn after_tick(&mut self, sp: &Setpoint, exec: &mut Executor) {
+        self.pathcorr.after_tick(sp, exec);
         if let Some(g) = exec.guidance_as::<EgmGuidance>() {
             self.feed_run(sp, g);
             self.drain_run(g);

@@ -177,6 +177,24 @@ pub enum EgmError {
         /// The instruction.
         instruction: &'static str,
     },
+    /// A path-corrected sequence that does not start (`start`) or end in a fine point
+    /// (checked by the controller); the text is the manual's (EGM manual §9.3.1.3).
+    #[error(
+        "{instruction} {name}: EGM Path correction has to start and end in a fine point; {}",
+        if *start {
+            "the movement before the first EGMMoveL/EGMMoveC must end with `fine`"
+        } else {
+            "end the last EGMMoveL/EGMMoveC of the sequence with `fine` before other movements"
+        }
+    )]
+    PathCorrFinePoint {
+        /// The identity's variable name.
+        name: String,
+        /// The instruction that found it.
+        instruction: &'static str,
+        /// True: the sequence does not start in a fine point; false: it does not end in one.
+        start: bool,
+    },
     /// An EGM movement before any RAPID movement since the controller started (checked by
     /// the controller).
     #[error(
@@ -272,6 +290,8 @@ impl EgmError {
             EgmError::Busy { .. } => EventKind::Busy,
             EgmError::Unsupported { .. } => EventKind::NotSupported,
             EgmError::NotInFinePoint { .. } => EventKind::NotInFinePoint,
+            EgmError::PathCorrFinePoint { start: true, .. } => EventKind::NotInFinePoint,
+            EgmError::PathCorrFinePoint { start: false, .. } => EventKind::NotEndedInFinePoint,
             EgmError::NoPreviousMove { .. } => EventKind::NoPreviousMove,
             EgmError::CommTimeout { .. } => EventKind::CommTimeout,
             EgmError::SendFailed { .. } => EventKind::SendError,

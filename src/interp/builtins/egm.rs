@@ -156,7 +156,7 @@ fn wait_for(
 // ----- arguments -----
 
 /// The identity name of the `egmident` reference argument `i` (see the module docs).
-fn ident(cx: &Ctx<'_>, i: usize) -> Exec<String> {
+pub(super) fn ident(cx: &Ctx<'_>, i: usize) -> Exec<String> {
     let Some(NArg::Ref(place)) = cx.arg(i) else {
         return Err(cx.it.fatal(
             ErrorKind::Host,

@@ -6,7 +6,7 @@
 //! (`fine` without `\Conc`), where it waits until the robot is there. Waits keep running
 //! traps. On a host without a robot every motion native fails with a clear error.
 
-mod data;
+pub(super) mod data;
 mod moves;
 mod position;
 mod settings;
