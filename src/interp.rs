@@ -17,6 +17,7 @@
 
 pub mod builtins;
 mod call;
+mod compile;
 pub mod error;
 mod expr;
 pub mod host;
@@ -29,9 +30,9 @@ pub mod value;
 
 use std::sync::Arc;
 
+pub use crate::ir::errnum;
 use crate::ir::{GlobalOrigin, Program, RoutineId, RoutineKind, Storage};
 use crate::source::Span;
-pub use crate::ir::errnum;
 pub use builtins::{NativeFn, Registry};
 pub use error::{ErrorKind, RuntimeError, StackEntry, Unwind};
 pub use host::{Host, HostError, Output, VirtualHost};
@@ -99,10 +100,14 @@ enum NArg {
 /// A RAPID program being executed.
 pub struct Interp {
     prog: Arc<Program>,
+    /// The program in the compiled form routine bodies run in.
+    code: Arc<compile::Code>,
     natives: Arc<[NativeFn]>,
     host: Box<dyn Host>,
     globals: Vec<Value>,
+    /// Value slots of all frames; `sp` is the top (slots above it are kept for reuse).
     stack: Vec<Value>,
+    sp: usize,
     refs: Vec<AbsPlace>,
     frames: Vec<Frame>,
     idx: Vec<i64>,
@@ -143,12 +148,15 @@ impl Interp {
     /// An interpreter for `prog`, which must have been checked against `registry`.
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
         let natives = registry.impls_for(&prog.natives);
+        let code = Arc::new(compile::Code::new(prog.clone()));
         Interp {
             prog,
+            code,
             natives,
             host,
             globals: Vec::new(),
             stack: Vec::with_capacity(1024),
+            sp: 0,
             refs: Vec::with_capacity(64),
             frames: Vec::with_capacity(64),
             idx: Vec::with_capacity(16),
@@ -283,6 +291,7 @@ impl Interp {
         let res = self.call_routine(&prog, rid, &args, r.head_span);
         self.frames.clear();
         self.stack.clear();
+        self.sp = 0;
         self.refs.clear();
         (self.bp, self.rbp) = (0, 0);
         match res {
