@@ -4,19 +4,22 @@
 //! Whatever has no specialised form keeps its IR node and runs on the tree-walking path, so
 //! both paths share one set of semantics (errors, spans, budget, hook, interrupts).
 
+mod assign;
 mod call;
 mod cond;
+mod divk;
 mod flow;
 mod num;
+mod simple;
 
 use std::sync::Arc;
 
 use super::Interp;
-use super::error::{Exec, Unwind};
-use super::value::Value;
-use crate::ir::{Block, Expr, Place, Program, Root, Routine, RoutineKind, Stmt, StmtKind, Ty};
+use super::error::Exec;
+use crate::ir::{Block, Program, Routine, RoutineKind, Stmt, StmtKind, Ty};
 use crate::source::Span;
 pub(crate) use call::CCall;
+pub(crate) use divk::DivK;
 pub(crate) use num::NumFn;
 
 /// A compiled `bool` expression.
@@ -105,7 +108,9 @@ impl Cx<'_> {
     fn stmt(&self, s: &Stmt) -> CStmt {
         let p = self.p;
         let run: StmtFn = match &s.kind {
-            StmtKind::AssignNum { place, value } => assign_num(p, place, value),
+            StmtKind::AssignNum { place, value } => {
+                assign::num_into(p, value, assign::Sink::of(place))
+            }
             StmtKind::Call { routine, args } => {
                 let call = CCall::new(p, *routine, args, s.span);
                 Box::new(move |it, c| it.ccall(c, &call).map(drop))
@@ -174,16 +179,7 @@ impl Cx<'_> {
                 Box::new(move |it, c| it.exec_ctest(c, &t))
             }
             StmtKind::Return(Some(e)) if self.ret == Some(Ty::NUM) => {
-                let v = num::num(p, e);
-                let span = e.span;
-                Box::new(move |it, c| {
-                    let x = v(it, c);
-                    if x.is_nan() {
-                        return Err(it.take_pending(span));
-                    }
-                    it.ret = Value::Num(x);
-                    Err(Unwind::Return)
-                })
+                assign::num_into(p, e, assign::Sink::Return)
             }
             _ => {
                 let s = s.clone();
@@ -192,65 +188,4 @@ impl Cx<'_> {
         };
         CStmt { run, span: s.span }
     }
-}
-
-/// `place := value` for `num`: whole locals and globals and 1-D array elements are written
-/// in place; other places go through [`Interp::store`].
-fn assign_num(p: &Program, place: &Place, value: &Expr) -> StmtFn {
-    let v = num::num(p, value);
-    let vs = value.span;
-    let place = place.clone();
-    if place.path.is_empty()
-        && let Root::Local(s) = place.root
-    {
-        return Box::new(move |it, c| {
-            let x = v(it, c);
-            if x.is_nan() {
-                return Err(it.take_pending(vs));
-            }
-            match it.stack.get_mut(it.bp + s as usize) {
-                Some(Value::Num(old)) => *old = x,
-                Some(other) => *other = Value::Num(x),
-                None => return it.store(&c.prog, &place, Value::Num(x)),
-            }
-            Ok(())
-        });
-    }
-    if place.path.is_empty()
-        && let Root::Global(g) = place.root
-    {
-        return Box::new(move |it, c| {
-            let x = v(it, c);
-            if x.is_nan() {
-                return Err(it.take_pending(vs));
-            }
-            match it.globals.get_mut(g as usize) {
-                Some(Value::Num(old)) => *old = x,
-                _ => return it.store(&c.prog, &place, Value::Num(x)),
-            }
-            Ok(())
-        });
-    }
-    if let Some(el) = num::Elem::of(&place) {
-        return Box::new(move |it, c| {
-            let x = v(it, c);
-            if x.is_nan() {
-                return Err(it.take_pending(vs));
-            }
-            match el.num_mut(it) {
-                Some(slot) => {
-                    *slot = x;
-                    Ok(())
-                }
-                None => it.store(&c.prog, &place, Value::Num(x)),
-            }
-        });
-    }
-    Box::new(move |it, c| {
-        let x = v(it, c);
-        if x.is_nan() {
-            return Err(it.take_pending(vs));
-        }
-        it.store(&c.prog, &place, Value::Num(x))
-    })
 }

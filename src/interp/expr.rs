@@ -248,6 +248,22 @@ impl Interp {
         self.mod_div_k_slow(x, k, is_mod, span)
     }
 
+    /// `x MOD k` / `x DIV k` with a precomputed divisor (compiled code).
+    #[inline(always)]
+    pub(crate) fn mod_div_c(
+        &mut self,
+        x: f32,
+        d: &super::compile::DivK,
+        is_mod: bool,
+        span: Span,
+    ) -> f32 {
+        // `f32_int` never yields `i32::MIN`.
+        match super::value::f32_int(x) {
+            Some(xi) => d.apply(xi, is_mod) as f32,
+            None => self.mod_div_k_slow(x, d.k(), is_mod, span),
+        }
+    }
+
     #[cold]
     #[inline(never)]
     fn mod_div_k_slow(&mut self, x: f32, k: i32, is_mod: bool, span: Span) -> f32 {

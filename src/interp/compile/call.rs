@@ -2,7 +2,7 @@
 //! (values of other types, references, absent and conditional arguments) as lowered.
 
 use super::Code;
-use super::num::{Opnd, opnd};
+use super::num::{Opnd, Src, opnd};
 use crate::interp::Interp;
 use crate::interp::error::{ErrorKind, Exec};
 use crate::interp::value::Value;

@@ -2,10 +2,12 @@
 //! (both operands always evaluated), `NOT`, constants and `bool` locals; anything else runs
 //! on the tree-walking path.
 
-use super::BoolFn;
-use super::num::opnd;
+use super::num::{Konst, Src, opnd};
+use super::{BoolFn, Code};
+use crate::interp::Interp;
 use crate::interp::value::Value;
 use crate::ir::{BinOp, Expr, ExprKind, Program, UnOp};
+use crate::source::Span;
 
 /// Compile a `bool` expression.
 pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
@@ -25,29 +27,10 @@ pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
             b,
         ) => {
             let (sa, sb) = (a.span, b.span);
-            let (a, b) = (opnd(p, a), opnd(p, b));
-            macro_rules! cmp {
-                (|$x:ident, $y:ident| $body:expr) => {
-                    Box::new(move |it, c| {
-                        let $x = a.get(it, c);
-                        if $x.is_nan() {
-                            return Err(it.take_pending(sa));
-                        }
-                        let $y = b.get(it, c);
-                        if $y.is_nan() {
-                            return Err(it.take_pending(sb));
-                        }
-                        Ok($body)
-                    })
-                };
-            }
-            match op {
-                BinOp::NumLt => cmp!(|x, y| x < y),
-                BinOp::NumLe => cmp!(|x, y| x <= y),
-                BinOp::NumGt => cmp!(|x, y| x > y),
-                BinOp::NumGe => cmp!(|x, y| x >= y),
-                BinOp::NumEq => cmp!(|x, y| x == y),
-                _ => cmp!(|x, y| x != y),
+            let b = opnd(p, b);
+            match b.konst() {
+                Some(k) => cmp(*op, opnd(p, a), sa, Konst(k), sb),
+                None => cmp(*op, opnd(p, a), sa, b, sb),
             }
         }
         ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
@@ -84,5 +67,32 @@ pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
             let e = e.clone();
             Box::new(move |it, c| it.eval_bool(&c.prog, &e))
         }
+    }
+}
+
+/// A `num` comparison (a failing operand raises its error at the operand's span).
+fn cmp<A: Src, B: Src>(op: BinOp, a: A, sa: Span, b: B, sb: Span) -> BoolFn {
+    macro_rules! cmp {
+        (|$x:ident, $y:ident| $body:expr) => {
+            Box::new(move |it: &mut Interp, c: &Code| {
+                let $x = a.get(it, c);
+                if A::FALLIBLE && $x.is_nan() {
+                    return Err(it.take_pending(sa));
+                }
+                let $y = b.get(it, c);
+                if B::FALLIBLE && $y.is_nan() {
+                    return Err(it.take_pending(sb));
+                }
+                Ok($body)
+            })
+        };
+    }
+    match op {
+        BinOp::NumLt => cmp!(|x, y| x < y),
+        BinOp::NumLe => cmp!(|x, y| x <= y),
+        BinOp::NumGt => cmp!(|x, y| x > y),
+        BinOp::NumGe => cmp!(|x, y| x >= y),
+        BinOp::NumEq => cmp!(|x, y| x == y),
+        _ => cmp!(|x, y| x != y),
     }
 }

@@ -3,18 +3,17 @@
 //! for shapes without a compiled form. As there, NaN signals an error kept in
 //! `Interp::pending`.
 
-use super::Code;
+use super::{Code, DivK};
 use crate::interp::Interp;
-use crate::interp::call::MAX_DEPTH;
 use crate::interp::value::{Value, f32_int};
-use crate::ir::{Arg, BinOp, Expr, ExprKind, PathOp, Place, Program, Root, RoutineId, Ty, UnOp};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Program, Root, UnOp};
 use crate::source::Span;
 
 /// A compiled `num` expression (NaN: an error is pending).
 pub(crate) type NumFn = Box<dyn Fn(&mut Interp, &Code) -> f32 + Send + Sync>;
 
-/// An operand of a compiled `num` operation.
-pub(crate) enum Opnd {
+/// An operand read without a call.
+pub(crate) enum Leaf {
     /// A constant.
     K(f32),
     /// A local slot.
@@ -23,36 +22,139 @@ pub(crate) enum Opnd {
     G(u32, Span),
     /// `a{i}` of a 1-D local or global array with a leaf index, and the IR load (slow path).
     E(Box<(Elem, Expr)>),
-    /// Anything else.
+}
+
+impl Leaf {
+    /// The leaf for `e`, if it is one.
+    fn of(e: &Expr) -> Option<Leaf> {
+        Some(match &e.kind {
+            ExprKind::Num(x) => Leaf::K(*x),
+            ExprKind::Local(s) => Leaf::L(*s, e.span),
+            ExprKind::Global(g) => Leaf::G(*g, e.span),
+            ExprKind::Load(pl) => Leaf::E(Box::new((Elem::of(pl)?, e.clone()))),
+            _ => return None,
+        })
+    }
+
+    /// The value (NaN: an error is pending).
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match self {
+            Leaf::K(x) => *x,
+            Leaf::L(s, span) => match it.stack.get(it.bp + *s as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => it.leaf_slow(c, ExprKind::Local(*s), *span),
+            },
+            Leaf::G(g, span) => match it.globals.get(*g as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => it.leaf_slow(c, ExprKind::Global(*g), *span),
+            },
+            Leaf::E(b) => elem_get(b, it, c),
+        }
+    }
+}
+
+/// The value of an array element operand.
+#[inline(never)]
+fn elem_get(b: &(Elem, Expr), it: &mut Interp, c: &Code) -> f32 {
+    match b.0.peek(it) {
+        Some(x) => x,
+        None => it.nf_cold(c, &b.1),
+    }
+}
+
+/// An operand of a compiled `num` operation.
+pub(crate) enum Opnd {
+    /// A leaf.
+    V(Leaf),
+    /// `a op b` (`+ - * / DIV MOD`) of two leaves, computed inline.
+    B(Box<(BinOp, Leaf, Leaf, Span)>),
+    /// `a MOD k` or `a DIV k` (`true` for MOD) of a leaf, computed inline.
+    M(Box<(Leaf, DivK, bool, Span)>),
+    /// Anything else: a closure.
     D(NumFn),
 }
 
 impl Opnd {
-    /// The operand's value (NaN: an error is pending).
-    #[inline(always)]
-    pub(crate) fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+    /// The constant this operand is, if it is one.
+    pub(crate) fn konst(&self) -> Option<f32> {
         match self {
-            Opnd::K(x) => *x,
-            Opnd::L(s, span) => match it.stack.get(it.bp + *s as usize) {
-                Some(Value::Num(x)) => *x,
-                _ => it.leaf_slow(c, ExprKind::Local(*s), *span),
-            },
-            Opnd::G(g, span) => match it.globals.get(*g as usize) {
-                Some(Value::Num(x)) => *x,
-                _ => it.leaf_slow(c, ExprKind::Global(*g), *span),
-            },
-            Opnd::E(b) => match b.0.peek(it) {
-                Some(x) => x,
-                None => it.nf_cold(c, &b.1),
-            },
+            Opnd::V(Leaf::K(x)) => Some(*x),
+            _ => None,
+        }
+    }
+}
+
+/// Something a compiled operation reads a `num` from.
+pub(crate) trait Src: Send + Sync + 'static {
+    /// Whether `get` can fail (return NaN).
+    const FALLIBLE: bool;
+    /// The value (NaN: an error is pending).
+    fn get(&self, it: &mut Interp, c: &Code) -> f32;
+}
+
+/// A constant operand, known not to fail.
+pub(crate) struct Konst(pub f32);
+
+impl Src for Konst {
+    const FALLIBLE: bool = false;
+    #[inline(always)]
+    fn get(&self, _: &mut Interp, _: &Code) -> f32 {
+        self.0
+    }
+}
+
+impl Src for Opnd {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match self {
+            Opnd::V(l) => l.get(it, c),
+            Opnd::B(b) => {
+                let (op, l, r, span) = &**b;
+                let x = l.get(it, c);
+                if x.is_nan() {
+                    return x;
+                }
+                let y = r.get(it, c);
+                if y.is_nan() {
+                    return y;
+                }
+                it.num_op(*op, x, y, *span)
+            }
+            Opnd::M(m) => {
+                let (l, d, is_mod, span) = &**m;
+                let x = l.get(it, c);
+                it.mod_div_c(x, d, *is_mod, *span)
+            }
             Opnd::D(f) => f(it, c),
         }
     }
 }
 
+/// `a` then `b` (stopping at the first failure), then `f` on both values.
+#[inline(always)]
+pub(crate) fn bin<A: Src, B: Src>(
+    it: &mut Interp,
+    c: &Code,
+    a: &A,
+    b: &B,
+    f: impl FnOnce(&mut Interp, f32, f32) -> f32,
+) -> f32 {
+    let x = a.get(it, c);
+    if A::FALLIBLE && x.is_nan() {
+        return x;
+    }
+    let y = b.get(it, c);
+    if B::FALLIBLE && y.is_nan() {
+        return y;
+    }
+    f(it, x, y)
+}
+
 /// An index without side effects (read twice when the fast path gives up).
 #[derive(Clone, Copy)]
-enum Leaf {
+enum Idx {
     K(f32),
     L(u32),
     G(u32),
@@ -61,7 +163,7 @@ enum Leaf {
 /// An element `a{i}` of a 1-D `num` array held by a local or a global.
 pub(crate) struct Elem {
     root: Root,
-    idx: Leaf,
+    idx: Idx,
 }
 
 impl Elem {
@@ -77,9 +179,9 @@ impl Elem {
             return None;
         }
         let idx = match ie.kind {
-            ExprKind::Num(x) => Leaf::K(x),
-            ExprKind::Local(s) => Leaf::L(s),
-            ExprKind::Global(g) => Leaf::G(g),
+            ExprKind::Num(x) => Idx::K(x),
+            ExprKind::Local(s) => Idx::L(s),
+            ExprKind::Global(g) => Idx::G(g),
             _ => return None,
         };
         Some(Elem { root: pl.root, idx })
@@ -90,12 +192,12 @@ impl Elem {
     #[inline(always)]
     fn offset(&self, it: &Interp) -> Option<usize> {
         let x = match self.idx {
-            Leaf::K(x) => x,
-            Leaf::L(s) => match it.stack.get(it.bp + s as usize) {
+            Idx::K(x) => x,
+            Idx::L(s) => match it.stack.get(it.bp + s as usize) {
                 Some(Value::Num(x)) => *x,
                 _ => return None,
             },
-            Leaf::G(g) => match it.globals.get(g as usize) {
+            Idx::G(g) => match it.globals.get(g as usize) {
                 Some(Value::Num(x)) => *x,
                 _ => return None,
             },
@@ -143,18 +245,25 @@ impl Elem {
     }
 }
 
-/// An operand for `e`.
+/// An operand for `e`: a leaf, an operation on leaves, or a closure.
 pub(crate) fn opnd(p: &Program, e: &Expr) -> Opnd {
-    match &e.kind {
-        ExprKind::Num(x) => Opnd::K(*x),
-        ExprKind::Local(s) => Opnd::L(*s, e.span),
-        ExprKind::Global(g) => Opnd::G(*g, e.span),
-        ExprKind::Load(pl) => match Elem::of(pl) {
-            Some(el) => Opnd::E(Box::new((el, e.clone()))),
-            None => Opnd::D(num(p, e)),
-        },
-        _ => Opnd::D(num(p, e)),
+    if let Some(l) = Leaf::of(e) {
+        return Opnd::V(l);
     }
+    match &e.kind {
+        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+            if let (Some(a), Some(b)) = (Leaf::of(a), Leaf::of(b)) {
+                return Opnd::B(Box::new((*op, a, b, e.span)));
+            }
+        }
+        ExprKind::NumModDivK(a, k, is_mod) => {
+            if let Some(a) = Leaf::of(a) {
+                return Opnd::M(Box::new((a, DivK::new(*k), *is_mod, e.span)));
+            }
+        }
+        _ => {}
+    }
+    Opnd::D(num(p, e))
 }
 
 /// Compile a `num` expression.
@@ -175,10 +284,10 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
         }
         ExprKind::Binary(op, a, b) if is_num_arith(*op) => arith(*op, opnd(p, a), opnd(p, b), span),
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, k, is_mod) = (opnd(p, a), *k, *is_mod);
+            let (a, d, is_mod) = (opnd(p, a), DivK::new(*k), *is_mod);
             Box::new(move |it, c| {
                 let x = a.get(it, c);
-                it.mod_div_k(x, k, is_mod, span)
+                it.mod_div_c(x, &d, is_mod, span)
             })
         }
         ExprKind::Unary(UnOp::NumNeg, a) => {
@@ -187,8 +296,8 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
         }
         ExprKind::Call(r, args) => {
             if p.routine(*r).simple {
-                let call = SCall::new(p, *r, args, span);
-                Box::new(move |it, c| it.call_simple_c(c, &call))
+                let call = super::simple::SCall::new(p, *r, args, span);
+                Box::new(move |it, c| it.call_simple(c, &call))
             } else {
                 let call = super::CCall::new(p, *r, args, span);
                 Box::new(move |it, c| {
@@ -208,7 +317,7 @@ fn fallback(e: &Expr) -> NumFn {
 }
 
 /// `+ - * / DIV MOD` on `num`.
-fn is_num_arith(op: BinOp) -> bool {
+pub(crate) fn is_num_arith(op: BinOp) -> bool {
     matches!(
         op,
         BinOp::NumAdd
@@ -220,111 +329,28 @@ fn is_num_arith(op: BinOp) -> bool {
     )
 }
 
-/// `a op b` for a `num` arithmetic operator.
+/// `a op b` for a `num` arithmetic operator (a constant right operand is read without
+/// checks).
 fn arith(op: BinOp, a: Opnd, b: Opnd, span: Span) -> NumFn {
-    macro_rules! bin {
+    match b.konst() {
+        Some(k) => arith_t(op, a, Konst(k), span),
+        None => arith_t(op, a, b, span),
+    }
+}
+
+fn arith_t<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span) -> NumFn {
+    macro_rules! op {
         (|$it:ident, $x:ident, $y:ident| $body:expr) => {
-            Box::new(move |$it: &mut Interp, c: &Code| {
-                let $x = a.get($it, c);
-                if $x.is_nan() {
-                    return $x;
-                }
-                let $y = b.get($it, c);
-                if $y.is_nan() {
-                    return $y;
-                }
-                $body
-            })
+            Box::new(move |it: &mut Interp, c: &Code| bin(it, c, &a, &b, |$it, $x, $y| $body))
         };
     }
     match op {
-        BinOp::NumAdd => bin!(|it, x, y| it.num_result(x + y, span)),
-        BinOp::NumSub => bin!(|it, x, y| it.num_result(x - y, span)),
-        BinOp::NumMul => bin!(|it, x, y| it.num_result(x * y, span)),
-        BinOp::NumIntDiv => bin!(|it, x, y| it.int_op(false, x, y, span)),
-        BinOp::NumMod => bin!(|it, x, y| it.int_op(true, x, y, span)),
-        _ => bin!(|it, x, y| it.num_op(op, x, y, span)),
-    }
-}
-
-/// A call of a simple function (see [`crate::ir::Routine::simple`]).
-pub(crate) struct SCall {
-    rid: RoutineId,
-    args: Box<[SArg]>,
-    /// The arguments as lowered (for the general path).
-    ir_args: Box<[Arg]>,
-    span: Span,
-    /// The callee's number of value slots.
-    n_slots: usize,
-    /// The callee's `RETURN` expression calls nothing and has no side effects, so it can be
-    /// evaluated without a frame and evaluated again, with its frame, if it fails.
-    pure: bool,
-}
-
-enum SArg {
-    Num(Opnd),
-    Val(Arg),
-}
-
-impl SCall {
-    fn new(p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> SCall {
-        let r = p.routine(rid);
-        let cargs = r
-            .params
-            .iter()
-            .zip(args.iter())
-            .map(|(param, arg)| match arg {
-                Arg::Value(e) if param.ty == Ty::NUM => SArg::Num(opnd(p, e)),
-                _ => SArg::Val(arg.clone()),
-            })
-            .collect();
-        let pure = match r.body.stmts.as_slice() {
-            [
-                crate::ir::Stmt {
-                    kind: crate::ir::StmtKind::Return(Some(e)),
-                    ..
-                },
-            ] => pure(e),
-            _ => false,
-        };
-        SCall {
-            rid,
-            args: cargs,
-            ir_args: args.into(),
-            span,
-            n_slots: r.n_slots as usize,
-            pure,
-        }
-    }
-}
-
-/// Does evaluating `e` leave everything as it was (no call, no I/O)?
-fn pure(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Num(_)
-        | ExprKind::Dnum(_)
-        | ExprKind::Bool(_)
-        | ExprKind::Str(_)
-        | ExprKind::Local(_)
-        | ExprKind::Global(_)
-        | ExprKind::Errno
-        | ExprKind::Intno
-        | ExprKind::Present(_) => true,
-        ExprKind::Load(pl) => pl.path.iter().all(|op| match op {
-            PathOp::Field(_) => true,
-            PathOp::Index(es) => es.iter().all(pure),
-        }),
-        ExprKind::Field(a, _)
-        | ExprKind::Unary(_, a)
-        | ExprKind::NumModDivK(a, ..)
-        | ExprKind::ToDnum(a)
-        | ExprKind::ToNum(a) => pure(a),
-        ExprKind::Binary(_, a, b) => pure(a) && pure(b),
-        ExprKind::Record(es) | ExprKind::Array(es, _) => es.iter().all(pure),
-        ExprKind::SignalValue(_)
-        | ExprKind::Call(..)
-        | ExprKind::Native(..)
-        | ExprKind::Placeholder(_) => false,
+        BinOp::NumAdd => op!(|it, x, y| it.num_result(x + y, span)),
+        BinOp::NumSub => op!(|it, x, y| it.num_result(x - y, span)),
+        BinOp::NumMul => op!(|it, x, y| it.num_result(x * y, span)),
+        BinOp::NumIntDiv => op!(|it, x, y| it.int_op(false, x, y, span)),
+        BinOp::NumMod => op!(|it, x, y| it.int_op(true, x, y, span)),
+        _ => op!(|it, x, y| it.num_op(op, x, y, span)),
     }
 }
 
@@ -341,90 +367,7 @@ impl Interp {
     /// effect.
     #[cold]
     #[inline(never)]
-    fn nf_cold(&mut self, c: &Code, e: &Expr) -> f32 {
+    pub(crate) fn nf_cold(&mut self, c: &Code, e: &Expr) -> f32 {
         self.nf(&c.prog, e)
-    }
-
-    /// Call a simple `FUNC num`: arguments pushed onto the value stack, the `RETURN`
-    /// expression evaluated directly (no statement loop, no `Value` result). A pure body
-    /// runs without a call frame unless the per-statement slow path is due or it fails; it
-    /// is then evaluated again with its frame, so hooks, interrupts and errors see exactly
-    /// what the general path shows.
-    fn call_simple_c(&mut self, c: &Code, sc: &SCall) -> f32 {
-        let p = &*c.prog;
-        let ret = c
-            .routines
-            .get(sc.rid.0 as usize)
-            .and_then(|r| r.ret_num.as_ref());
-        let Some((body, st_span)) = ret else {
-            return self.call_num_general(p, sc.rid, &sc.ir_args, sc.span);
-        };
-        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
-            return self.call_num_general(p, sc.rid, &sc.ir_args, sc.span);
-        }
-        let bp = self.sp;
-        // Arguments are pushed as they are computed (nested calls made while evaluating
-        // one use the stack above it and leave it as they found it).
-        for arg in sc.args.iter() {
-            match arg {
-                SArg::Num(o) => {
-                    let x = o.get(self, c);
-                    if x.is_nan() {
-                        self.sp = bp;
-                        return x;
-                    }
-                    self.push_num(x);
-                }
-                SArg::Val(a) => match self.arg_value(p, a) {
-                    Ok(v) => self.push_value(v),
-                    Err(u) => {
-                        self.sp = bp;
-                        return self.fail_nf(u);
-                    }
-                },
-            }
-        }
-        while self.sp < bp + sc.n_slots {
-            self.push_num(0.0);
-        }
-        let saved = (self.bp, self.rbp);
-        self.bp = bp;
-        self.steps += 1;
-        let mut x = f32::NAN;
-        if sc.pure && self.steps < self.next_poll {
-            x = body(self, c);
-            if x.is_nan() {
-                self.pending = None;
-            }
-        }
-        if x.is_nan() {
-            x = self.simple_framed(c, sc, body, *st_span);
-        }
-        (self.bp, self.rbp) = saved;
-        self.sp = bp;
-        x
-    }
-
-    /// The body of a simple call with its frame (and the per-statement slow path when due).
-    #[inline(never)]
-    fn simple_framed(&mut self, c: &Code, sc: &SCall, body: &NumFn, st_span: Span) -> f32 {
-        if let Some(f) = self.frames.last_mut() {
-            f.at = sc.span;
-        }
-        self.frames.push(crate::interp::Frame {
-            routine: sc.rid,
-            at: st_span,
-            handling: None,
-        });
-        let x = if self.steps >= self.next_poll {
-            match self.poll(&c.prog, st_span) {
-                Ok(()) => body(self, c),
-                Err(u) => self.fail_nf(u),
-            }
-        } else {
-            body(self, c)
-        };
-        self.frames.pop();
-        x
     }
 }
