@@ -1,6 +1,13 @@
-//! The tree-walking interpreter over [`crate::ir`]: values, frames, places, statements,
-//! error recovery, interrupts and natives. It owns neither time nor I/O: everything outside
-//! goes through a [`Host`].
+//! The interpreter over [`crate::ir`]: values, frames, places, statements, error recovery,
+//! interrupts and natives. It owns neither time nor I/O: everything outside goes through a
+//! [`Host`].
+//!
+//! Routine bodies run in a compiled form built once in [`Interp::new`] (`compile`): blocks of
+//! closures with `num` arithmetic, conditions, loops and calls specialised; everything else
+//! keeps its IR node and runs on the tree-walking path, which both share (errors, spans,
+//! budget, hook, interrupts). A simple `FUNC num` whose `RETURN` expression is pure is
+//! inlined at its call sites; when that fails, or the per-statement slow path is due, the
+//! call is made the general way, so errors and hooks see the callee's frame as always.
 //!
 //! Semantics decisions (pinned by tests under `tests/run` and `tests/rapid`):
 //! * `num` is `f32`; literals are rounded to `f32` when lowered, so `x := 9E9; x = 9E9` holds.
