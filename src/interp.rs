@@ -1,6 +1,13 @@
-//! The tree-walking interpreter over [`crate::ir`]: values, frames, places, statements,
-//! error recovery, interrupts and natives. It owns neither time nor I/O: everything outside
-//! goes through a [`Host`].
+//! The interpreter over [`crate::ir`]: values, frames, places, statements, error recovery,
+//! interrupts and natives. It owns neither time nor I/O: everything outside goes through a
+//! [`Host`].
+//!
+//! Routine bodies run in a compiled form built once in [`Interp::new`] (`compile`): blocks of
+//! closures with `num` arithmetic, conditions, loops and calls specialised; everything else
+//! keeps its IR node and runs on the tree-walking path, which both share (errors, spans,
+//! budget, hook, interrupts). A simple `FUNC num` whose `RETURN` expression is pure is
+//! inlined at its call sites; when that fails, or the per-statement slow path is due, the
+//! call is made the general way, so errors and hooks see the callee's frame as always.
 //!
 //! Semantics decisions (pinned by tests under `tests/run` and `tests/rapid`):
 //! * `num` is `f32`; literals are rounded to `f32` when lowered, so `x := 9E9; x = 9E9` holds.
@@ -17,6 +24,7 @@
 
 pub mod builtins;
 mod call;
+mod compile;
 pub mod error;
 mod expr;
 pub mod host;
@@ -101,10 +109,14 @@ enum NArg {
 /// A RAPID program being executed.
 pub struct Interp {
     prog: Arc<Program>,
+    /// The program in the compiled form routine bodies run in.
+    code: Arc<compile::Code>,
     natives: Arc<[NativeFn]>,
     host: Box<dyn Host>,
     globals: Vec<Value>,
+    /// Value slots of all frames; `sp` is the top (slots above it are kept for reuse).
     stack: Vec<Value>,
+    sp: usize,
     refs: Vec<AbsPlace>,
     frames: Vec<Frame>,
     idx: Vec<i64>,
@@ -145,12 +157,15 @@ impl Interp {
     /// An interpreter for `prog`, which must have been checked against `registry`.
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
         let natives = registry.impls_for(&prog.natives);
+        let code = Arc::new(compile::Code::new(prog.clone()));
         Interp {
             prog,
+            code,
             natives,
             host,
             globals: Vec::new(),
             stack: Vec::with_capacity(1024),
+            sp: 0,
             refs: Vec::with_capacity(64),
             frames: Vec::with_capacity(64),
             idx: Vec::with_capacity(16),
@@ -285,6 +300,7 @@ impl Interp {
         let res = self.call_routine(&prog, rid, &args, r.head_span);
         self.frames.clear();
         self.stack.clear();
+        self.sp = 0;
         self.refs.clear();
         (self.bp, self.rbp) = (0, 0);
         match res {

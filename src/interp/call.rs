@@ -23,8 +23,39 @@ pub(crate) fn stack_addr() -> usize {
 impl Interp {
     /// Has the Rust stack used since the run started reached the budget?
     #[inline(always)]
-    fn stack_exhausted(&self) -> bool {
+    pub(crate) fn stack_exhausted(&self) -> bool {
         self.stack_base.saturating_sub(stack_addr()) > self.stack_budget
+    }
+
+    /// Push a value onto the value stack. Slots above the top keep their last values (they
+    /// are reused by the next frame instead of being dropped and pushed again).
+    #[inline(always)]
+    pub(crate) fn push_value(&mut self, v: Value) {
+        match self.stack.get_mut(self.sp) {
+            Some(slot) => *slot = v,
+            None => self.stack.push(v),
+        }
+        self.sp += 1;
+    }
+
+    /// Push a `num` onto the value stack (only the number is written when the slot above
+    /// the top already holds one).
+    #[inline(always)]
+    pub(crate) fn push_num(&mut self, x: f32) {
+        match self.stack.get_mut(self.sp) {
+            Some(Value::Num(slot)) => *slot = x,
+            _ => self.push_num_slow(x),
+        }
+        self.sp += 1;
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn push_num_slow(&mut self, x: f32) {
+        match self.stack.get_mut(self.sp) {
+            Some(slot) => *slot = Value::Num(x),
+            None => self.stack.push(Value::Num(x)),
+        }
     }
 
     /// Call a simple function (see [`crate::ir::Routine::simple`]) whose result is a `num`,
@@ -50,37 +81,31 @@ impl Interp {
         if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
             return self.call_num_general(p, rid, args, span);
         }
-        let bp = self.stack.len();
-        // Reserve the frame first and write num arguments in place (nested calls made while
-        // evaluating arguments use the stack above it).
-        for _ in 0..r.n_slots {
-            self.stack.push(Value::Num(0.0));
-        }
-        for (k, (param, arg)) in r.params.iter().zip(args.iter()).enumerate() {
+        let bp = self.sp;
+        // Arguments are pushed as they are computed (nested calls made while evaluating
+        // one use the stack above it and leave it as they found it).
+        for (param, arg) in r.params.iter().zip(args.iter()) {
             match arg {
                 Arg::Value(e) if param.ty == crate::ir::Ty::NUM => {
                     let x = self.nf(p, e);
                     if x.is_nan() {
-                        self.stack.truncate(bp);
+                        self.sp = bp;
                         return x;
                     }
-                    if let Some(Value::Num(slot)) = self.stack.get_mut(bp + k) {
-                        *slot = x;
-                    }
+                    self.push_num(x);
                 }
                 _ => match self.arg_value(p, arg) {
-                    Ok(v) => {
-                        if let Some(slot) = self.stack.get_mut(bp + k) {
-                            *slot = v;
-                        }
-                    }
+                    Ok(v) => self.push_value(v),
                     Err(u) => {
-                        self.stack.truncate(bp);
+                        self.sp = bp;
                         self.pending = Some(u);
                         return f32::NAN;
                     }
                 },
             }
+        }
+        while self.sp < bp + r.n_slots as usize {
+            self.push_num(0.0);
         }
         if let Some(f) = self.frames.last_mut() {
             f.at = span;
@@ -107,12 +132,18 @@ impl Interp {
         };
         (self.bp, self.rbp) = saved;
         self.frames.pop();
-        self.stack.truncate(bp);
+        self.sp = bp;
         x
     }
 
     #[inline(never)]
-    fn call_num_general(&mut self, p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> f32 {
+    pub(crate) fn call_num_general(
+        &mut self,
+        p: &Program,
+        rid: RoutineId,
+        args: &[Arg],
+        span: Span,
+    ) -> f32 {
         match self.call_routine(p, rid, args, span) {
             Ok(Value::Num(x)) => x,
             Ok(other) => {
@@ -146,13 +177,29 @@ impl Interp {
                 ),
             ));
         }
-        let bp = self.stack.len();
+        let bp = self.sp;
         let rbp = self.refs.len();
         if let Err(u) = self.push_args(p, r, args) {
-            self.stack.truncate(bp);
+            self.sp = bp;
             self.refs.truncate(rbp);
             return Err(u);
         }
+        let code = self.code.clone();
+        self.enter(&code, rid, bp, rbp, span)
+    }
+
+    /// Run routine `rid` (compiled) on a frame whose arguments are on the stacks from `bp`
+    /// and `rbp`, called at `span`; pops the frame.
+    pub(crate) fn enter(
+        &mut self,
+        c: &super::compile::Code,
+        rid: RoutineId,
+        bp: usize,
+        rbp: usize,
+        span: Span,
+    ) -> Exec<Value> {
+        let p = &*c.prog;
+        let r = p.routine(rid);
         if let Some(f) = self.frames.last_mut() {
             f.at = span;
         }
@@ -165,13 +212,16 @@ impl Interp {
         let saved = (self.bp, self.rbp);
         (self.bp, self.rbp) = (bp, rbp);
         let res = match self.init_locals(p, r, bp) {
-            Ok(()) => self.exec_block(p, &r.body),
+            Ok(()) => match c.routines.get(rid.0 as usize) {
+                Some(cr) => self.exec_cblock(c, &cr.body),
+                None => self.exec_block(p, &r.body),
+            },
             Err(u) => Err(u),
         };
         let res = self.finish_call(p, r, res);
         (self.bp, self.rbp) = saved;
         self.frames.pop();
-        self.stack.truncate(bp);
+        self.sp = bp;
         self.refs.truncate(rbp);
         res
     }
@@ -181,7 +231,7 @@ impl Interp {
             match param.slot {
                 ParamSlot::Value(_) => {
                     let v = self.arg_value(p, arg)?;
-                    self.stack.push(v);
+                    self.push_value(v);
                 }
                 ParamSlot::Ref(_) => {
                     let a = self.arg_ref(p, arg)?;
@@ -208,7 +258,7 @@ impl Interp {
         }
     }
 
-    fn arg_ref(&mut self, p: &Program, arg: &Arg) -> Exec<AbsPlace> {
+    pub(crate) fn arg_ref(&mut self, p: &Program, arg: &Arg) -> Exec<AbsPlace> {
         match arg {
             Arg::Absent => Ok(AbsPlace::absent()),
             Arg::Ref(pl) => self.resolve(p, pl),
@@ -228,9 +278,9 @@ impl Interp {
     }
 
     fn init_locals(&mut self, p: &Program, r: &Routine, bp: usize) -> Exec<()> {
-        let need = bp + r.n_slots as usize;
-        if self.stack.len() < need {
-            self.stack.resize(need, Value::Num(0.0));
+        // Routine data and FOR variables start as 0 until initialised.
+        while self.sp < bp + r.n_slots as usize {
+            self.push_num(0.0);
         }
         for l in &r.locals {
             let v = match &l.init {

@@ -137,7 +137,7 @@ impl Interp {
 
     /// Record an error for the NaN-signalling num path and return NaN.
     #[cold]
-    fn fail_nf(&mut self, u: super::Unwind) -> f32 {
+    pub(crate) fn fail_nf(&mut self, u: super::Unwind) -> f32 {
         self.pending = Some(u);
         f32::NAN
     }
@@ -205,15 +205,21 @@ impl Interp {
     }
 
     #[inline(never)]
-    fn nf_slow(&mut self, p: &Program, e: &Expr) -> f32 {
-        match self.eval(p, e) {
+    pub(crate) fn nf_slow(&mut self, p: &Program, e: &Expr) -> f32 {
+        let r = self.eval(p, e);
+        self.nf_of(r, e.span)
+    }
+
+    /// The NaN-signalling `num` of an evaluation result (a `dnum` is converted).
+    pub(crate) fn nf_of(&mut self, r: Exec<Value>, span: Span) -> f32 {
+        match r {
             Ok(Value::Num(x)) => x,
-            Ok(Value::Dnum(x)) => match self.to_f32(x, e.span) {
+            Ok(Value::Dnum(x)) => match self.to_f32(x, span) {
                 Ok(x) => x,
                 Err(u) => self.fail_nf(u),
             },
             Ok(other) => {
-                let u = self.type_bug(e.span, "num", &other);
+                let u = self.type_bug(span, "num", &other);
                 self.fail_nf(u)
             }
             Err(u) => self.fail_nf(u),
@@ -227,11 +233,40 @@ impl Interp {
             Some(x) => x,
             None => self.nf(p, a),
         };
+        self.mod_div_k(x, k, is_mod, span)
+    }
+
+    /// `x MOD k` / `x DIV k` for an evaluated `x` (NaN passes through) and a constant
+    /// integer `k` ≠ 0.
+    #[inline(always)]
+    pub(crate) fn mod_div_k(&mut self, x: f32, k: i32, is_mod: bool, span: Span) -> f32 {
         if let Some(xi) = super::value::f32_int(x)
             && xi != i32::MIN
         {
             return if is_mod { xi % k } else { xi / k } as f32;
         }
+        self.mod_div_k_slow(x, k, is_mod, span)
+    }
+
+    /// `x MOD k` / `x DIV k` with a precomputed divisor (compiled code).
+    #[inline(always)]
+    pub(crate) fn mod_div_c(
+        &mut self,
+        x: f32,
+        d: &super::compile::DivK,
+        is_mod: bool,
+        span: Span,
+    ) -> f32 {
+        // `f32_int` never yields `i32::MIN`.
+        match super::value::f32_int(x) {
+            Some(xi) => d.apply(xi, is_mod) as f32,
+            None => self.mod_div_k_slow(x, d.k(), is_mod, span),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn mod_div_k_slow(&mut self, x: f32, k: i32, is_mod: bool, span: Span) -> f32 {
         if x.is_nan() {
             return x;
         }
@@ -257,45 +292,77 @@ impl Interp {
         if y.is_nan() {
             return y;
         }
+        self.num_op(op, x, y, span)
+    }
+
+    /// A `num` arithmetic operator on evaluated operands (neither NaN), with its checks:
+    /// division by zero, integer operands of DIV/MOD, results outside the range of num.
+    #[inline(always)]
+    pub(crate) fn num_op(&mut self, op: BinOp, x: f32, y: f32, span: Span) -> f32 {
         let r = match op {
             BinOp::NumAdd => x + y,
             BinOp::NumSub => x - y,
             BinOp::NumMul => x * y,
             BinOp::NumDiv => {
                 if y == 0.0 {
-                    let u = self.error(errnum::ERR_DIVZERO, span, "division by zero");
-                    return self.fail_nf(u);
+                    return self.div_zero(span);
                 }
                 x / y
             }
-            _ => {
-                // Fast path: integer operands that fit i32 (every exact num integer does).
-                if let (Some(xi), Some(yi)) = (super::value::f32_int(x), super::value::f32_int(y))
-                    && yi != 0
-                    && xi != i32::MIN
-                {
-                    return if op == BinOp::NumMod {
-                        xi % yi
-                    } else {
-                        xi / yi
-                    } as f32;
-                }
-                match self.int_div_mod(op == BinOp::NumMod, x as f64, y as f64, span) {
-                    Ok(r) => r as f32,
-                    Err(u) => return self.fail_nf(u),
-                }
-            }
+            _ => return self.int_op(op == BinOp::NumMod, x, y, span),
         };
+        self.num_result(r, span)
+    }
+
+    /// DIV (`is_mod` false) or MOD of evaluated operands (neither NaN).
+    #[inline(always)]
+    pub(crate) fn int_op(&mut self, is_mod: bool, x: f32, y: f32, span: Span) -> f32 {
+        // Fast path: integer operands that fit i32 (every exact num integer does).
+        if let (Some(xi), Some(yi)) = (super::value::f32_int(x), super::value::f32_int(y))
+            && yi != 0
+            && xi != i32::MIN
+        {
+            return if is_mod { xi % yi } else { xi / yi } as f32;
+        }
+        self.int_op_slow(is_mod, x, y, span)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn int_op_slow(&mut self, is_mod: bool, x: f32, y: f32, span: Span) -> f32 {
+        let r = match self.int_div_mod(is_mod, x as f64, y as f64, span) {
+            Ok(r) => r as f32,
+            Err(u) => return self.fail_nf(u),
+        };
+        self.num_result(r, span)
+    }
+
+    /// A computed `num`, or `ERR_NUM_LIMIT` when it is not finite.
+    #[inline(always)]
+    pub(crate) fn num_result(&mut self, r: f32, span: Span) -> f32 {
         if r.is_finite() {
             r
         } else {
-            let u = self.error(
-                errnum::ERR_NUM_LIMIT,
-                span,
-                "the result is outside the range of num",
-            );
-            self.fail_nf(u)
+            self.num_limit(span)
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn num_limit(&mut self, span: Span) -> f32 {
+        let u = self.error(
+            errnum::ERR_NUM_LIMIT,
+            span,
+            "the result is outside the range of num",
+        );
+        self.fail_nf(u)
+    }
+
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn div_zero(&mut self, span: Span) -> f32 {
+        let u = self.error(errnum::ERR_DIVZERO, span, "division by zero");
+        self.fail_nf(u)
     }
 
     /// Evaluate a `num` or `dnum` expression as f64.

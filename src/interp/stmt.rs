@@ -37,38 +37,56 @@ impl Interp {
                     i += 1;
                     retries = 0;
                 }
-                Err(Unwind::Error(e)) => match self.handle_error(p, e)? {
-                    Resume::Retry => {
-                        retries += 1;
-                        if retries > self.retry_limit {
-                            let e = self.make_error(
-                                ErrorKind::Rapid(errnum::ERR_EXCRTYMAX),
-                                s.span,
-                                format!(
-                                    "the statement failed again after {} RETRYs",
-                                    self.retry_limit
-                                ),
-                            );
-                            return Err(Unwind::Propagate(e));
-                        }
-                    }
-                    Resume::Next => {
-                        i += 1;
-                        retries = 0;
-                    }
-                },
-                Err(Unwind::Goto(l)) => match b.labels.iter().find(|(id, _)| *id == l) {
-                    Some(&(_, at)) => i = at as usize,
-                    None => return Err(Unwind::Goto(l)),
-                },
-                Err(u) => return Err(u),
+                Err(u) => i = self.after_unwind(p, u, &b.labels, s.span, i, &mut retries)?,
             }
         }
         Ok(())
     }
 
+    /// Where a block goes on after statement `i` (at `span`) unwound with `u`: the error
+    /// handler protocol (RETRY with its limit, TRYNEXT) and GOTO to a label of this block.
     #[inline(never)]
-    fn exec_stmt(&mut self, p: &Program, s: &Stmt) -> Exec<()> {
+    pub(crate) fn after_unwind(
+        &mut self,
+        p: &Program,
+        u: Unwind,
+        labels: &[(u32, u32)],
+        span: Span,
+        i: usize,
+        retries: &mut u32,
+    ) -> Exec<usize> {
+        match u {
+            Unwind::Error(e) => match self.handle_error(p, e)? {
+                Resume::Retry => {
+                    *retries += 1;
+                    if *retries > self.retry_limit {
+                        let e = self.make_error(
+                            ErrorKind::Rapid(errnum::ERR_EXCRTYMAX),
+                            span,
+                            format!(
+                                "the statement failed again after {} RETRYs",
+                                self.retry_limit
+                            ),
+                        );
+                        return Err(Unwind::Propagate(e));
+                    }
+                    Ok(i)
+                }
+                Resume::Next => {
+                    *retries = 0;
+                    Ok(i + 1)
+                }
+            },
+            Unwind::Goto(l) => match labels.iter().find(|(id, _)| *id == l) {
+                Some(&(_, at)) => Ok(at as usize),
+                None => Err(Unwind::Goto(l)),
+            },
+            u => Err(u),
+        }
+    }
+
+    #[inline(never)]
+    pub(crate) fn exec_stmt(&mut self, p: &Program, s: &Stmt) -> Exec<()> {
         match &s.kind {
             StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
             StmtKind::Assign { place, value } => {
@@ -346,7 +364,7 @@ impl Interp {
     /// The per-statement slow path: budget, hook, interrupts.
     #[cold]
     #[inline(never)]
-    fn poll(&mut self, p: &Program, span: Span) -> Exec<()> {
+    pub(crate) fn poll(&mut self, p: &Program, span: Span) -> Exec<()> {
         if let Some(b) = self.budget
             && self.steps > b
         {

@@ -135,23 +135,18 @@ impl Value {
     }
 }
 
-/// The integer a `num` holds, if it holds one that fits `i32` (checked on the bits, with no
-/// float round trip: the hot path of array indices and `DIV`/`MOD`).
+/// The integer a `num` holds, if it holds one that fits `i32` (the hot path of array indices
+/// and `DIV`/`MOD`): a truncating conversion and back. NaN converts to 0 and values outside
+/// `i32` saturate to its ends, which are excluded (±2³¹ are not in range, and the slow path
+/// takes them).
 #[inline(always)]
 pub fn f32_int(x: f32) -> Option<i32> {
-    let b = x.to_bits();
-    let e = ((b >> 23) & 0xff) as i32 - 127;
-    if e < 0 {
-        // |x| < 1: only ±0 is an integer.
-        return if b << 1 == 0 { Some(0) } else { None };
+    let i = x as i32;
+    if i as f32 == x && i != i32::MIN && i != i32::MAX {
+        Some(i)
+    } else {
+        None
     }
-    if e >= 31 {
-        return None;
-    }
-    if e < 23 && b & ((1u32 << (23 - e)) - 1) != 0 {
-        return None;
-    }
-    Some(x as i32)
 }
 
 /// Structural equality as RAPID's `=`: numbers by value (num and dnum compare as numbers),
@@ -218,7 +213,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn integer_nums_are_recognised_on_their_bits() {
+    fn integer_nums_are_recognised() {
         for x in [
             0.0f32,
             -0.0,
@@ -229,6 +224,8 @@ mod tests {
             8_388_608.0,
             16_777_216.0,
             -1.0e9,
+            2_147_483_520.0,
+            -2_147_483_520.0,
         ] {
             assert_eq!(f32_int(x), Some(x as i32), "{x}");
         }
@@ -241,8 +238,10 @@ mod tests {
             8_388_607.5,
             3.0e9,
             -2_147_483_648.0,
+            2_147_483_648.0,
             f32::NAN,
             f32::INFINITY,
+            f32::NEG_INFINITY,
         ] {
             assert_eq!(f32_int(x), None, "{x}");
         }

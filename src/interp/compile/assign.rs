@@ -1,0 +1,124 @@
+//! Statements that compute a `num` and put it somewhere (`x := …`, `a{i} := …`,
+//! `RETURN …` in a `FUNC num`), fused with the expression's top operation so that the
+//! statement is a single closure.
+
+use super::num::{Elem, Konst, NumFn, Src, bin, is_num_arith, num, opnd};
+use super::{Code, StmtFn};
+use crate::interp::Interp;
+use crate::interp::error::{Exec, Unwind};
+use crate::interp::value::Value;
+use crate::ir::{BinOp, Expr, ExprKind, Place, Program, Root};
+use crate::source::Span;
+
+/// Where the computed `num` goes.
+pub(crate) enum Sink {
+    /// A whole local slot.
+    Local(u32, Place),
+    /// A whole global.
+    Global(u32, Place),
+    /// An element of a 1-D array.
+    Elem(Elem, Place),
+    /// Any other place.
+    Place(Place),
+    /// The function result (`RETURN`).
+    Return,
+}
+
+impl Sink {
+    /// Where `place := …` writes.
+    pub(crate) fn of(place: &Place) -> Sink {
+        let pl = place.clone();
+        match (place.root, place.path.is_empty()) {
+            (Root::Local(s), true) => Sink::Local(s, pl),
+            (Root::Global(g), true) => Sink::Global(g, pl),
+            _ => match Elem::of(place) {
+                Some(el) => Sink::Elem(el, pl),
+                None => Sink::Place(pl),
+            },
+        }
+    }
+
+    /// Store `x` (not NaN). Whole locals and globals and 1-D array elements are written in
+    /// place; anything else goes through [`Interp::store`].
+    #[inline(always)]
+    fn put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        match self {
+            Sink::Local(s, pl) => match it.stack.get_mut(it.bp + *s as usize) {
+                Some(Value::Num(old)) => *old = x,
+                Some(other) => *other = Value::Num(x),
+                None => return it.store(&c.prog, pl, Value::Num(x)),
+            },
+            Sink::Global(g, pl) => match it.globals.get_mut(*g as usize) {
+                Some(Value::Num(old)) => *old = x,
+                _ => return it.store(&c.prog, pl, Value::Num(x)),
+            },
+            Sink::Elem(el, pl) => match el.num_mut(it) {
+                Some(slot) => *slot = x,
+                None => return it.store(&c.prog, pl, Value::Num(x)),
+            },
+            Sink::Place(pl) => return it.store(&c.prog, pl, Value::Num(x)),
+            Sink::Return => {
+                it.ret = Value::Num(x);
+                return Err(Unwind::Return);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Store a computed value, or fail with the error behind its NaN (at the value's span).
+#[inline(always)]
+fn finish(it: &mut Interp, c: &Code, sink: &Sink, x: f32, vs: Span) -> Exec<()> {
+    if x.is_nan() {
+        return Err(it.take_pending(vs));
+    }
+    sink.put(it, c, x)
+}
+
+/// A statement computing `value` into `sink`.
+pub(crate) fn num_into(p: &Program, value: &Expr, sink: Sink) -> StmtFn {
+    let vs = value.span;
+    match &value.kind {
+        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+            let b = opnd(p, b);
+            match b.konst() {
+                Some(k) => arith_into(*op, opnd(p, a), Konst(k), vs, sink),
+                None => arith_into(*op, opnd(p, a), b, vs, sink),
+            }
+        }
+        ExprKind::NumModDivK(a, k, is_mod) => {
+            let (a, d, is_mod) = (opnd(p, a), super::DivK::new(*k), *is_mod);
+            Box::new(move |it, c| {
+                let x = a.get(it, c);
+                let x = it.mod_div_c(x, &d, is_mod, vs);
+                finish(it, c, &sink, x, vs)
+            })
+        }
+        _ => {
+            let f: NumFn = num(p, value);
+            Box::new(move |it, c| {
+                let x = f(it, c);
+                finish(it, c, &sink, x, vs)
+            })
+        }
+    }
+}
+
+fn arith_into<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span, sink: Sink) -> StmtFn {
+    macro_rules! op {
+        (|$it:ident, $x:ident, $y:ident| $body:expr) => {
+            Box::new(move |it: &mut Interp, c: &Code| {
+                let x = bin(it, c, &a, &b, |$it, $x, $y| $body);
+                finish(it, c, &sink, x, span)
+            })
+        };
+    }
+    match op {
+        BinOp::NumAdd => op!(|it, x, y| it.num_result(x + y, span)),
+        BinOp::NumSub => op!(|it, x, y| it.num_result(x - y, span)),
+        BinOp::NumMul => op!(|it, x, y| it.num_result(x * y, span)),
+        BinOp::NumIntDiv => op!(|it, x, y| it.int_op(false, x, y, span)),
+        BinOp::NumMod => op!(|it, x, y| it.int_op(true, x, y, span)),
+        _ => op!(|it, x, y| it.num_op(op, x, y, span)),
+    }
+}

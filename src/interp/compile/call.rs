@@ -1,0 +1,90 @@
+//! Calls of user routines from compiled code: `num` arguments evaluated inline, the others
+//! (values of other types, references, absent and conditional arguments) as lowered.
+
+use super::Code;
+use super::num::{Opnd, Src, opnd};
+use crate::interp::Interp;
+use crate::interp::error::{ErrorKind, Exec};
+use crate::interp::value::Value;
+use crate::ir::{Arg, ParamSlot, Program, RoutineId, Ty};
+use crate::source::Span;
+
+/// A compiled call of a user routine.
+pub(crate) struct CCall {
+    rid: RoutineId,
+    args: Box<[CArg]>,
+    span: Span,
+}
+
+/// A compiled argument, for the callee's parameter at the same index.
+enum CArg {
+    /// A `num` value for an IN parameter, and the expression's span.
+    Num(Opnd, Span),
+    /// Anything else, as lowered.
+    Ir(Arg),
+}
+
+impl CCall {
+    pub(crate) fn new(p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> CCall {
+        let r = p.routine(rid);
+        let cargs = r
+            .params
+            .iter()
+            .zip(args.iter())
+            .map(|(param, arg)| match (param.slot, arg) {
+                (ParamSlot::Value(_), Arg::Value(e)) if param.ty == Ty::NUM => {
+                    CArg::Num(opnd(p, e), e.span)
+                }
+                _ => CArg::Ir(arg.clone()),
+            })
+            .collect();
+        CCall {
+            rid,
+            args: cargs,
+            span,
+        }
+    }
+}
+
+impl Interp {
+    /// Call a user routine from compiled code; returns the FUNC result (or `Absent`).
+    pub(crate) fn ccall(&mut self, c: &Code, call: &CCall) -> Exec<Value> {
+        let p = &*c.prog;
+        if self.frames.len() >= crate::interp::call::MAX_DEPTH || self.stack_exhausted() {
+            return Err(self.fatal(
+                ErrorKind::Aborted,
+                call.span,
+                format!(
+                    "calls nested {} levels deep: the interpreter's stack is used up (runaway recursion?)",
+                    self.frames.len()
+                ),
+            ));
+        }
+        let r = p.routine(call.rid);
+        let bp = self.sp;
+        let rbp = self.refs.len();
+        for (param, arg) in r.params.iter().zip(call.args.iter()) {
+            let res = match (param.slot, arg) {
+                (_, CArg::Num(o, span)) => {
+                    let x = o.get(self, c);
+                    if x.is_nan() {
+                        Err(self.take_pending(*span))
+                    } else {
+                        self.push_num(x);
+                        Ok(())
+                    }
+                }
+                (ParamSlot::Value(_), CArg::Ir(a)) => {
+                    self.arg_value(p, a).map(|v| self.push_value(v))
+                }
+                (ParamSlot::Ref(_), CArg::Ir(a)) => self.arg_ref(p, a).map(|a| self.refs.push(a)),
+            };
+            if let Err(u) = res {
+                self.sp = bp;
+                self.refs.truncate(rbp);
+                return Err(u);
+            }
+        }
+        self.enter(c, call.rid, bp, rbp, call.span)
+    }
+}

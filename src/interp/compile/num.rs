@@ -1,0 +1,373 @@
+//! `num` expressions as closures. Operands that are constants, locals, globals or elements of
+//! 1-D arrays are read inline; anything else is a nested closure, or the tree-walking path
+//! for shapes without a compiled form. As there, NaN signals an error kept in
+//! `Interp::pending`.
+
+use super::{Code, DivK};
+use crate::interp::Interp;
+use crate::interp::value::{Value, f32_int};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Program, Root, UnOp};
+use crate::source::Span;
+
+/// A compiled `num` expression (NaN: an error is pending).
+pub(crate) type NumFn = Box<dyn Fn(&mut Interp, &Code) -> f32 + Send + Sync>;
+
+/// An operand read without a call.
+pub(crate) enum Leaf {
+    /// A constant.
+    K(f32),
+    /// A local slot.
+    L(u32, Span),
+    /// A global.
+    G(u32, Span),
+    /// `a{i}` of a 1-D local or global array with a leaf index, and the IR load (slow path).
+    E(Box<(Elem, Expr)>),
+}
+
+impl Leaf {
+    /// The leaf for `e`, if it is one.
+    fn of(e: &Expr) -> Option<Leaf> {
+        Some(match &e.kind {
+            ExprKind::Num(x) => Leaf::K(*x),
+            ExprKind::Local(s) => Leaf::L(*s, e.span),
+            ExprKind::Global(g) => Leaf::G(*g, e.span),
+            ExprKind::Load(pl) => Leaf::E(Box::new((Elem::of(pl)?, e.clone()))),
+            _ => return None,
+        })
+    }
+
+    /// The value (NaN: an error is pending).
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match self {
+            Leaf::K(x) => *x,
+            Leaf::L(s, span) => match it.stack.get(it.bp + *s as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => it.leaf_slow(c, ExprKind::Local(*s), *span),
+            },
+            Leaf::G(g, span) => match it.globals.get(*g as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => it.leaf_slow(c, ExprKind::Global(*g), *span),
+            },
+            Leaf::E(b) => elem_get(b, it, c),
+        }
+    }
+}
+
+/// The value of an array element operand.
+#[inline(never)]
+fn elem_get(b: &(Elem, Expr), it: &mut Interp, c: &Code) -> f32 {
+    match b.0.peek(it) {
+        Some(x) => x,
+        None => it.nf_cold(c, &b.1),
+    }
+}
+
+/// An operand of a compiled `num` operation.
+pub(crate) enum Opnd {
+    /// A leaf.
+    V(Leaf),
+    /// `a op b` (`+ - * / DIV MOD`) of two leaves, computed inline.
+    B(Box<(BinOp, Leaf, Leaf, Span)>),
+    /// `a MOD k` or `a DIV k` (`true` for MOD) of a leaf, computed inline.
+    M(Box<(Leaf, DivK, bool, Span)>),
+    /// Anything else: a closure.
+    D(NumFn),
+}
+
+impl Opnd {
+    /// The constant this operand is, if it is one.
+    pub(crate) fn konst(&self) -> Option<f32> {
+        match self {
+            Opnd::V(Leaf::K(x)) => Some(*x),
+            _ => None,
+        }
+    }
+}
+
+/// Something a compiled operation reads a `num` from.
+pub(crate) trait Src: Send + Sync + 'static {
+    /// Whether `get` can fail (return NaN).
+    const FALLIBLE: bool;
+    /// The value (NaN: an error is pending).
+    fn get(&self, it: &mut Interp, c: &Code) -> f32;
+}
+
+/// A constant operand, known not to fail.
+pub(crate) struct Konst(pub f32);
+
+impl Src for Konst {
+    const FALLIBLE: bool = false;
+    #[inline(always)]
+    fn get(&self, _: &mut Interp, _: &Code) -> f32 {
+        self.0
+    }
+}
+
+impl Src for Opnd {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match self {
+            Opnd::V(l) => l.get(it, c),
+            Opnd::B(b) => {
+                let (op, l, r, span) = &**b;
+                let x = l.get(it, c);
+                if x.is_nan() {
+                    return x;
+                }
+                let y = r.get(it, c);
+                if y.is_nan() {
+                    return y;
+                }
+                it.num_op(*op, x, y, *span)
+            }
+            Opnd::M(m) => {
+                let (l, d, is_mod, span) = &**m;
+                let x = l.get(it, c);
+                it.mod_div_c(x, d, *is_mod, *span)
+            }
+            Opnd::D(f) => f(it, c),
+        }
+    }
+}
+
+/// `a` then `b` (stopping at the first failure), then `f` on both values.
+#[inline(always)]
+pub(crate) fn bin<A: Src, B: Src>(
+    it: &mut Interp,
+    c: &Code,
+    a: &A,
+    b: &B,
+    f: impl FnOnce(&mut Interp, f32, f32) -> f32,
+) -> f32 {
+    let x = a.get(it, c);
+    if A::FALLIBLE && x.is_nan() {
+        return x;
+    }
+    let y = b.get(it, c);
+    if B::FALLIBLE && y.is_nan() {
+        return y;
+    }
+    f(it, x, y)
+}
+
+/// An index without side effects (read twice when the fast path gives up).
+#[derive(Clone, Copy)]
+enum Idx {
+    K(f32),
+    L(u32),
+    G(u32),
+}
+
+/// An element `a{i}` of a 1-D `num` array held by a local or a global.
+pub(crate) struct Elem {
+    root: Root,
+    idx: Idx,
+}
+
+impl Elem {
+    /// The element access a place denotes, if it has this shape.
+    pub(crate) fn of(pl: &Place) -> Option<Elem> {
+        let [PathOp::Index(es)] = &*pl.path else {
+            return None;
+        };
+        let [ie] = &**es else {
+            return None;
+        };
+        if matches!(pl.root, Root::Ref(_)) {
+            return None;
+        }
+        let idx = match ie.kind {
+            ExprKind::Num(x) => Idx::K(x),
+            ExprKind::Local(s) => Idx::L(s),
+            ExprKind::Global(g) => Idx::G(g),
+            _ => return None,
+        };
+        Some(Elem { root: pl.root, idx })
+    }
+
+    /// The 0-based offset of the element, if the index is an integer in bounds of a 1-D
+    /// array (`None`: the general path decides, with its errors).
+    #[inline(always)]
+    fn offset(&self, it: &Interp) -> Option<usize> {
+        let x = match self.idx {
+            Idx::K(x) => x,
+            Idx::L(s) => match it.stack.get(it.bp + s as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => return None,
+            },
+            Idx::G(g) => match it.globals.get(g as usize) {
+                Some(Value::Num(x)) => *x,
+                _ => return None,
+            },
+        };
+        let i = f32_int(x)?;
+        (i >= 1).then_some((i - 1) as usize)
+    }
+
+    /// The element's value when the fast path applies.
+    #[inline(always)]
+    fn peek(&self, it: &Interp) -> Option<f32> {
+        let o = self.offset(it)?;
+        let arr = match self.root {
+            Root::Local(s) => it.stack.get(it.bp + s as usize),
+            Root::Global(g) => it.globals.get(g as usize),
+            Root::Ref(_) => None,
+        };
+        match arr {
+            Some(Value::Array(a)) if a.rank == 1 && o < a.dims[0] as usize => match a.data.get(o) {
+                Some(Value::Num(x)) => Some(*x),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// The element, for writing, when the fast path applies.
+    #[inline(always)]
+    pub(crate) fn num_mut<'a>(&self, it: &'a mut Interp) -> Option<&'a mut f32> {
+        let o = self.offset(it)?;
+        let arr = match self.root {
+            Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+            Root::Global(g) => it.globals.get_mut(g as usize),
+            Root::Ref(_) => None,
+        };
+        match arr {
+            Some(Value::Array(a)) if a.rank == 1 && o < a.dims[0] as usize => {
+                match a.data.get_mut(o) {
+                    Some(Value::Num(x)) => Some(x),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+}
+
+/// An operand for `e`: a leaf, an operation on leaves, or a closure.
+pub(crate) fn opnd(p: &Program, e: &Expr) -> Opnd {
+    if let Some(l) = Leaf::of(e) {
+        return Opnd::V(l);
+    }
+    match &e.kind {
+        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+            if let (Some(a), Some(b)) = (Leaf::of(a), Leaf::of(b)) {
+                return Opnd::B(Box::new((*op, a, b, e.span)));
+            }
+        }
+        ExprKind::NumModDivK(a, k, is_mod) => {
+            if let Some(a) = Leaf::of(a) {
+                return Opnd::M(Box::new((a, DivK::new(*k), *is_mod, e.span)));
+            }
+        }
+        _ => {}
+    }
+    Opnd::D(num(p, e))
+}
+
+/// Compile a `num` expression.
+pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
+    let span = e.span;
+    match &e.kind {
+        ExprKind::Num(x) => {
+            let x = *x;
+            Box::new(move |_, _| x)
+        }
+        ExprKind::Local(_) | ExprKind::Global(_) => {
+            let o = opnd(p, e);
+            Box::new(move |it, c| o.get(it, c))
+        }
+        ExprKind::Load(pl) if Elem::of(pl).is_some() => {
+            let o = opnd(p, e);
+            Box::new(move |it, c| o.get(it, c))
+        }
+        ExprKind::Binary(op, a, b) if is_num_arith(*op) => arith(*op, opnd(p, a), opnd(p, b), span),
+        ExprKind::NumModDivK(a, k, is_mod) => {
+            let (a, d, is_mod) = (opnd(p, a), DivK::new(*k), *is_mod);
+            Box::new(move |it, c| {
+                let x = a.get(it, c);
+                it.mod_div_c(x, &d, is_mod, span)
+            })
+        }
+        ExprKind::Unary(UnOp::NumNeg, a) => {
+            let a = opnd(p, a);
+            Box::new(move |it, c| -a.get(it, c))
+        }
+        ExprKind::Call(r, args) => {
+            if p.routine(*r).simple {
+                let call = super::simple::SCall::new(p, *r, args, span);
+                Box::new(move |it, c| it.call_simple(c, &call))
+            } else {
+                let call = super::CCall::new(p, *r, args, span);
+                Box::new(move |it, c| {
+                    let r = it.ccall(c, &call);
+                    it.nf_of(r, span)
+                })
+            }
+        }
+        _ => fallback(e),
+    }
+}
+
+/// The tree-walking path for `e`.
+fn fallback(e: &Expr) -> NumFn {
+    let e = e.clone();
+    Box::new(move |it, c| it.nf(&c.prog, &e))
+}
+
+/// `+ - * / DIV MOD` on `num`.
+pub(crate) fn is_num_arith(op: BinOp) -> bool {
+    matches!(
+        op,
+        BinOp::NumAdd
+            | BinOp::NumSub
+            | BinOp::NumMul
+            | BinOp::NumDiv
+            | BinOp::NumIntDiv
+            | BinOp::NumMod
+    )
+}
+
+/// `a op b` for a `num` arithmetic operator (a constant right operand is read without
+/// checks).
+fn arith(op: BinOp, a: Opnd, b: Opnd, span: Span) -> NumFn {
+    match b.konst() {
+        Some(k) => arith_t(op, a, Konst(k), span),
+        None => arith_t(op, a, b, span),
+    }
+}
+
+fn arith_t<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span) -> NumFn {
+    macro_rules! op {
+        (|$it:ident, $x:ident, $y:ident| $body:expr) => {
+            Box::new(move |it: &mut Interp, c: &Code| bin(it, c, &a, &b, |$it, $x, $y| $body))
+        };
+    }
+    match op {
+        BinOp::NumAdd => op!(|it, x, y| it.num_result(x + y, span)),
+        BinOp::NumSub => op!(|it, x, y| it.num_result(x - y, span)),
+        BinOp::NumMul => op!(|it, x, y| it.num_result(x * y, span)),
+        BinOp::NumIntDiv => op!(|it, x, y| it.int_op(false, x, y, span)),
+        BinOp::NumMod => op!(|it, x, y| it.int_op(true, x, y, span)),
+        _ => op!(|it, x, y| it.num_op(op, x, y, span)),
+    }
+}
+
+impl Interp {
+    /// A leaf that is not a plain `num` (a missing optional parameter, a `dnum`): the
+    /// tree-walking path decides.
+    #[cold]
+    #[inline(never)]
+    fn leaf_slow(&mut self, c: &Code, kind: ExprKind, span: Span) -> f32 {
+        self.nf_slow(&c.prog, &Expr { kind, span })
+    }
+
+    /// The tree-walking path for an expression whose fast path gave up before any side
+    /// effect.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn nf_cold(&mut self, c: &Code, e: &Expr) -> f32 {
+        self.nf(&c.prog, e)
+    }
+}
