@@ -7,7 +7,7 @@
 //!
 //! Hosts without EGM (the `rapidvc test` runner) make every instruction stop the program with
 //! "`EGMGetId` is not supported by this controller". EGMMoveL/EGMMoveC (path correction)
-//! are checked but not run yet.
+//! live in `egm_path.rs`, which replaces the placeholders registered here.
 
 use super::{Ctx, NativeFn, Registry};
 use crate::egm::EgmError;
