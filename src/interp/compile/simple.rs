@@ -299,6 +299,7 @@ impl Interp {
         }
         self.frames.push(crate::interp::Frame {
             routine: sc.rid,
+            bp: self.bp as u32,
             at: st_span,
             handling: None,
         });
