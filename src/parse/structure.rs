@@ -83,10 +83,15 @@ impl Eq for Folded<'_> {}
 
 impl Hash for Folded<'_> {
     fn hash<H: Hasher>(&self, state: &mut H) {
-        for b in self.0.bytes() {
-            state.write_u8(b.to_ascii_uppercase());
+        // Eight upper-cased bytes at a time (a hasher call per byte costs more than the rest).
+        for chunk in self.0.as_bytes().chunks(8) {
+            let mut word = [0u8; 8];
+            for (w, b) in word.iter_mut().zip(chunk) {
+                *w = b.to_ascii_uppercase();
+            }
+            state.write_u64(u64::from_le_bytes(word));
         }
-        state.write_u8(0xff);
+        state.write_usize(self.0.len());
     }
 }
 
