@@ -28,6 +28,8 @@ pub(crate) struct Builder<'t, 'd> {
     /// Errors reported so far in this file.
     pub(crate) errors: usize,
     stopped: bool,
+    /// Items of the lists being built (see `build/literal.rs`), reused across the file.
+    scratch: Vec<ast::Expr>,
 }
 
 /// Parse and build one file (see [`super::parse_file`]).
@@ -40,6 +42,7 @@ pub(crate) fn parse(file: SourceId, text: &str, diags: &mut Diagnostics) -> ast:
         base: 0,
         errors: 0,
         stopped: false,
+        scratch: Vec::new(),
     };
     let empty = ast::File {
         modules: Vec::new(),

@@ -2,6 +2,8 @@
 //! (module items, routine parameters and data, record components) and placeholder warnings.
 
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::hash::{Hash, Hasher};
 
 use super::error::{ParseError, ParseErrorKind};
 use crate::ast::{
@@ -17,16 +19,16 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics) {
         file: file.span.source,
     };
     for m in &file.modules {
-        let scope = format!("module `{}`", m.name.node);
+        let scope = Scope("module", &m.name.node);
         let mut names = Names::default();
         for item in &m.items {
             match item {
                 ModuleItem::Record(r) => {
-                    names.add(&mut c, &r.name, &scope);
-                    let rscope = format!("record `{}`", r.name.node);
+                    names.add(&mut c, &r.name, scope);
+                    let rscope = Scope("record", &r.name.node);
                     let mut fields = Names::default();
                     for f in &r.fields {
-                        fields.add(&mut c, &f.name, &rscope);
+                        fields.add(&mut c, &f.name, rscope);
                         c.ident(&f.ty);
                         c.ident(&f.name);
                         c.exprs(&f.dims);
@@ -34,16 +36,16 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics) {
                     c.ident(&r.name);
                 }
                 ModuleItem::Alias(a) => {
-                    names.add(&mut c, &a.name, &scope);
+                    names.add(&mut c, &a.name, scope);
                     c.ident(&a.name);
                     c.ident(&a.base);
                 }
                 ModuleItem::Data(d) => {
-                    names.add(&mut c, &d.name, &scope);
+                    names.add(&mut c, &d.name, scope);
                     c.data(d);
                 }
                 ModuleItem::Routine(r) => {
-                    names.add(&mut c, &r.name, &scope);
+                    names.add(&mut c, &r.name, scope);
                     c.routine(r);
                 }
                 ModuleItem::Placeholder(p) => c.placeholder(p.node, p.span),
@@ -57,26 +59,62 @@ struct Checker<'d> {
     file: crate::source::SourceId,
 }
 
-/// First declaration of each case-folded name in one scope.
-#[derive(Default)]
-struct Names {
-    first: HashMap<String, Span>,
+/// A scope for duplicate names: its kind and name, written out only for a message.
+#[derive(Clone, Copy)]
+struct Scope<'a>(&'static str, &'a str);
+
+impl Scope<'_> {
+    fn describe(self) -> String {
+        format!("{} `{}`", self.0, self.1)
+    }
 }
 
-impl Names {
-    fn add(&mut self, c: &mut Checker<'_>, name: &Ident, scope: &str) {
+/// A name compared and hashed case-insensitively (ASCII), borrowed from the tree.
+#[derive(Clone, Copy)]
+struct Folded<'a>(&'a str);
+
+impl PartialEq for Folded<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_ignore_ascii_case(other.0)
+    }
+}
+
+impl Eq for Folded<'_> {}
+
+impl Hash for Folded<'_> {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        // Eight upper-cased bytes at a time (a hasher call per byte costs more than the rest).
+        for chunk in self.0.as_bytes().chunks(8) {
+            let mut word = [0u8; 8];
+            for (w, b) in word.iter_mut().zip(chunk) {
+                *w = b.to_ascii_uppercase();
+            }
+            state.write_u64(u64::from_le_bytes(word));
+        }
+        state.write_usize(self.0.len());
+    }
+}
+
+/// First declaration of each case-folded name in one scope.
+#[derive(Default)]
+struct Names<'a> {
+    first: HashMap<Folded<'a>, Span>,
+}
+
+impl<'a> Names<'a> {
+    fn add(&mut self, c: &mut Checker<'_>, name: &'a Ident, scope: Scope<'_>) {
         if name.node.is_empty() || name.node.starts_with('<') {
             return;
         }
-        match self.first.get(&name.folded()) {
-            Some(&first) => c.push(ParseErrorKind::DuplicateName {
+        match self.first.entry(Folded(&name.node)) {
+            Entry::Occupied(first) => c.push(ParseErrorKind::DuplicateName {
                 span: name.span,
-                first,
+                first: *first.get(),
                 name: name.node.clone(),
-                scope: scope.to_string(),
+                scope: scope.describe(),
             }),
-            None => {
-                self.first.insert(name.folded(), name.span);
+            Entry::Vacant(v) => {
+                v.insert(name.span);
             }
         }
     }
@@ -127,14 +165,14 @@ impl Checker<'_> {
 
     fn routine(&mut self, r: &Routine) {
         self.ident(&r.name);
-        let scope = format!("routine `{}`", r.name.node);
+        let scope = Scope("routine", &r.name.node);
         let mut names = Names::default();
         for g in &r.params {
             for p in &g.alternatives {
                 match p.placeholder {
                     Some(ph) => self.placeholder(ph, p.span),
                     None => {
-                        names.add(self, &p.name, &scope);
+                        names.add(self, &p.name, scope);
                         self.ident(&p.ty);
                         self.ident(&p.name);
                     }
@@ -142,7 +180,7 @@ impl Checker<'_> {
             }
         }
         for d in &r.data {
-            names.add(self, &d.name, &scope);
+            names.add(self, &d.name, scope);
             self.data(d);
         }
         self.stmts(&r.body);

@@ -273,7 +273,8 @@ impl Builder<'_, '_> {
         pairs: impl IntoIterator<Item = Pair<'i>>,
         depth: usize,
     ) -> Option<(Vec<Expr>, usize)> {
-        let mut out = Vec::new();
+        let pairs = pairs.into_iter();
+        let mut out = Vec::with_capacity(pairs.size_hint().0);
         let mut max = 0;
         for p in pairs {
             let (e, d) = self.expr_at(p, depth + 1)?;
@@ -297,7 +298,8 @@ impl Builder<'_, '_> {
         pairs: impl IntoIterator<Item = Pair<'i>>,
         depth: usize,
     ) -> Option<(Vec<Arg>, usize)> {
-        let mut out = Vec::new();
+        let pairs = pairs.into_iter();
+        let mut out = Vec::with_capacity(pairs.size_hint().0);
         let mut max = 0;
         for p in pairs {
             // Spans are built from the parts: a pair's own span would include the white

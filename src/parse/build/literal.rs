@@ -121,13 +121,18 @@ impl Builder<'_, '_> {
         }
         let start = *pos;
         *pos += 1; // `[`
-        let mut items = Vec::new();
+        // Items go to the shared scratch stack (nested aggregates push above them), then into
+        // a vector of exactly their number: no reallocation while the list grows.
+        let mark = self.scratch.len();
         let mut max = 0;
         loop {
             skip_trivia(t, pos);
-            let (item, d) = self.lit_item(t, base, pos, depth)?;
+            let Some((item, d)) = self.lit_item(t, base, pos, depth) else {
+                self.scratch.truncate(mark);
+                return None;
+            };
             max = max.max(d);
-            items.push(item);
+            self.scratch.push(item);
             skip_trivia(t, pos);
             match t.as_bytes().get(*pos) {
                 Some(b',') => *pos += 1,
@@ -135,6 +140,7 @@ impl Builder<'_, '_> {
             }
         }
         *pos += 1; // `]`
+        let items: Vec<Expr> = self.scratch.drain(mark..).collect();
         Some((
             Expr {
                 kind: ExprKind::Aggregate(items),
@@ -264,13 +270,96 @@ fn skip_trivia(t: &str, pos: &mut usize) {
 
 /// Parse a number literal as written (no sign).
 pub(crate) fn parse_number(text: &str) -> Option<f64> {
+    let b = text.as_bytes();
+    // Most literals are small integers: read them directly (exact: below 2^53), the float
+    // parser gives the same value.
+    if !b.is_empty() && b.len() <= 15 && b.iter().all(u8::is_ascii_digit) {
+        let v = b.iter().fold(0u64, |v, d| v * 10 + u64::from(d - b'0'));
+        return Some(v as f64);
+    }
     let radix = |digits: &str, r: u32| u64::from_str_radix(digits, r).ok().map(|v| v as f64);
-    let lower = |s: &str| s.get(..2).map(|p| p.to_ascii_lowercase());
-    match lower(text).as_deref() {
-        Some("0x") => radix(&text[2..], 16),
-        Some("0b") => radix(&text[2..], 2),
-        Some("0o") => radix(&text[2..], 8),
-        _ => text.parse::<f64>().ok(),
+    match b {
+        [b'0', b'x' | b'X', ..] => radix(&text[2..], 16),
+        [b'0', b'b' | b'B', ..] => radix(&text[2..], 2),
+        [b'0', b'o' | b'O', ..] => radix(&text[2..], 8),
+        _ => exact_decimal(b).or_else(|| text.parse::<f64>().ok()),
+    }
+}
+
+/// Powers of ten that are exact in an `f64`.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// A decimal literal (`digits[.digits][e[+|-]digits]`) whose digits fit in 53 bits and whose
+/// scale is at most 10^22 either way: one exact multiplication or division, hence correctly
+/// rounded (Clinger's fast path, the same value as `str::parse`). `None` for anything else.
+fn exact_decimal(b: &[u8]) -> Option<f64> {
+    const LIMIT: u64 = 1 << 53;
+    let mut mant: u64 = 0;
+    let mut scale: i64 = 0;
+    let mut i = 0;
+    let mut digits = 0;
+    while let Some(d) = b.get(i).filter(|c| c.is_ascii_digit()) {
+        mant = mant * 10 + u64::from(d - b'0');
+        if mant >= LIMIT {
+            return None;
+        }
+        i += 1;
+        digits += 1;
+    }
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        while let Some(d) = b.get(i).filter(|c| c.is_ascii_digit()) {
+            mant = mant * 10 + u64::from(d - b'0');
+            if mant >= LIMIT {
+                return None;
+            }
+            scale -= 1;
+            i += 1;
+            digits += 1;
+        }
+    }
+    if digits == 0 {
+        return None;
+    }
+    if let Some(b'e' | b'E') = b.get(i) {
+        i += 1;
+        let negative = match b.get(i) {
+            Some(b'-') => {
+                i += 1;
+                true
+            }
+            Some(b'+') => {
+                i += 1;
+                false
+            }
+            _ => false,
+        };
+        let start = i;
+        let mut exp: i64 = 0;
+        while let Some(d) = b.get(i).filter(|c| c.is_ascii_digit()) {
+            exp = (exp * 10 + i64::from(d - b'0')).min(1_000);
+            i += 1;
+        }
+        if i == start {
+            return None;
+        }
+        scale += if negative { -exp } else { exp };
+    }
+    if i != b.len() {
+        return None;
+    }
+    let m = mant as f64;
+    match usize::try_from(scale.unsigned_abs()) {
+        _ if mant == 0 => Some(0.0),
+        Ok(k) if k < POW10.len() => Some(if scale < 0 {
+            m / POW10[k]
+        } else {
+            m * POW10[k]
+        }),
+        _ => None,
     }
 }
 
@@ -290,5 +379,53 @@ mod tests {
         assert_eq!(parse_number("0B101"), Some(5.0));
         assert_eq!(parse_number("0o17"), Some(15.0));
         assert_eq!(parse_number("0x"), None);
+        assert_eq!(parse_number("0"), Some(0.0));
+        assert_eq!(parse_number("007"), Some(7.0));
+        assert_eq!(parse_number("999999999999999"), Some(999999999999999.0));
+        assert_eq!(parse_number("9999999999999999"), Some(1e16));
+        assert_eq!(
+            parse_number("12345678901234567890"),
+            Some(1.2345678901234567e19)
+        );
+        assert_eq!(parse_number("0.0356"), Some(0.0356));
+        assert_eq!(parse_number("1e-300"), Some(1e-300));
+        assert_eq!(parse_number("1e400"), Some(f64::INFINITY));
+    }
+
+    /// The fast path for decimals gives exactly what the standard parser gives.
+    #[test]
+    fn decimals_match_the_standard_parser() {
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % n
+        };
+        for _ in 0..200_000 {
+            let mut t = String::new();
+            for _ in 0..next(18) {
+                t.push(char::from(b'0' + next(10) as u8));
+            }
+            if next(3) > 0 {
+                t.push('.');
+                for _ in 0..next(18) {
+                    t.push(char::from(b'0' + next(10) as u8));
+                }
+            }
+            if next(3) == 0 {
+                t.push(['e', 'E'][next(2) as usize]);
+                t.push_str(["", "+", "-"][next(3) as usize]);
+                t.push_str(&next(40).to_string());
+            }
+            let std = t.parse::<f64>().ok();
+            if std.is_some() {
+                assert_eq!(
+                    parse_number(&t).map(f64::to_bits),
+                    std.map(f64::to_bits),
+                    "{t}"
+                );
+            }
+        }
     }
 }

@@ -143,7 +143,7 @@ impl Builder<'_, '_> {
         inner: &mut impl Iterator<Item = Pair<'i>>,
         keyword: &'static str,
     ) -> Vec<Stmt> {
-        let mut body = Vec::new();
+        let mut body = Vec::with_capacity(inner.size_hint().0);
         for p in inner {
             match p.as_rule() {
                 Rule::statement | Rule::bad_stmt => self.stmt_item(p, &mut body),
