@@ -10,6 +10,7 @@ pub(crate) mod diag;
 #[grammar = "grammar/tokens.pest"]
 #[grammar = "grammar/expr.pest"]
 #[grammar = "grammar/stmt.pest"]
+#[grammar = "grammar/stmt_fast.pest"]
 #[grammar = "grammar/routine.pest"]
 #[grammar = "grammar/module.pest"]
 #[grammar = "grammar/recover.pest"]

@@ -21,16 +21,19 @@ impl Builder<'_, '_> {
         }
     }
 
-    /// A `statement` pair (or a simple statement directly, as in a compact IF).
+    /// A `statement` pair, or the `simple_stmt` of a compact IF.
     pub(crate) fn statement(&mut self, p: Pair<'_>) -> Option<Stmt> {
         let errors = self.errors;
         let span = self.span(&p);
-        let p = if p.as_rule() == Rule::statement {
-            p.into_inner().next()?
+        let mut inner = p.into_inner();
+        let first = inner.next()?;
+        let kind = if first.as_rule() == Rule::ident {
+            // A call, an assignment or a label: the name, then what follows it.
+            let tail = inner.next()?;
+            self.name_stmt(first, tail)
         } else {
-            p
+            self.stmt_kind(first)
         };
-        let kind = self.stmt_kind(p);
         if kind.is_none() && self.errors == errors {
             // A shape the grammar should not produce; never drop a statement silently.
             self.error(ParseErrorKind::Limit {
@@ -41,18 +44,31 @@ impl Builder<'_, '_> {
         Some(Stmt { kind: kind?, span })
     }
 
+    /// A statement that starts with a name: `call_tail`, `assign_tail` or `label_tail`.
+    fn name_stmt(&mut self, name: Pair<'_>, tail: Pair<'_>) -> Option<StmtKind> {
+        Some(match tail.as_rule() {
+            Rule::call_tail => {
+                let name = self.ident(&name);
+                StmtKind::Call {
+                    name,
+                    args: self.call_args(tail.into_inner())?,
+                }
+            }
+            Rule::assign_tail => {
+                let mut inner = tail.into_inner().peekable();
+                let target = self.target(name, &mut inner)?;
+                let value = self.expr(inner.next()?)?;
+                StmtKind::Assign { target, value }
+            }
+            _ => StmtKind::Label(self.ident(&name)),
+        })
+    }
+
     fn stmt_kind(&mut self, p: Pair<'_>) -> Option<StmtKind> {
         let rule = p.as_rule();
         let mut inner = p.into_inner().peekable();
         Some(match rule {
-            Rule::call_stmt => {
-                let name = self.ident(&inner.next()?);
-                StmtKind::Call {
-                    name,
-                    args: self.call_args(inner)?,
-                }
-            }
-            Rule::assign_stmt => {
+            Rule::ph_assign => {
                 let first = inner.next()?;
                 let target = self.target(first, &mut inner)?;
                 let value = self.expr(inner.next()?)?;
@@ -65,7 +81,6 @@ impl Builder<'_, '_> {
                     args: self.call_args(inner)?,
                 }
             }
-            Rule::label_stmt => StmtKind::Label(self.ident(&inner.next()?)),
             Rule::placeholder_stmt => StmtKind::Placeholder(placeholder(inner.next()?.as_str())),
             Rule::goto_stmt => {
                 inner.next();

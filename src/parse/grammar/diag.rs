@@ -8,6 +8,7 @@
 #[grammar = "grammar/tokens_diag.pest"]
 #[grammar = "grammar/expr.pest"]
 #[grammar = "grammar/stmt.pest"]
+#[grammar = "grammar/stmt_diag.pest"]
 #[grammar = "grammar/routine.pest"]
 #[grammar = "grammar/module.pest"]
 #[grammar = "grammar/recover.pest"]
