@@ -20,7 +20,8 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics) {
     };
     for m in &file.modules {
         let scope = Scope("module", &m.name.node);
-        let mut names = Names::default();
+        // (Sized for every item up front: growing the map would hash every name again.)
+        let mut names = Names::with_capacity(m.items.len());
         for item in &m.items {
             match item {
                 ModuleItem::Record(r) => {
@@ -102,6 +103,12 @@ struct Names<'a> {
 }
 
 impl<'a> Names<'a> {
+    fn with_capacity(n: usize) -> Self {
+        Names {
+            first: HashMap::with_capacity(n),
+        }
+    }
+
     fn add(&mut self, c: &mut Checker<'_>, name: &'a Ident, scope: Scope<'_>) {
         if name.node.is_empty() || name.node.starts_with('<') {
             return;

@@ -14,7 +14,9 @@ impl Builder<'_, '_> {
         let mut local = false;
         let mut task = None;
         let mut storage = Storage::Var;
-        let mut names: Vec<Ident> = Vec::new();
+        // The type, then the name.
+        let mut ty: Option<Ident> = None;
+        let mut name: Option<Ident> = None;
         let mut dims = Vec::new();
         let mut init = None;
         for item in p.into_inner() {
@@ -24,7 +26,8 @@ impl Builder<'_, '_> {
                 Rule::kw_var => storage = Storage::Var,
                 Rule::kw_pers => storage = Storage::Pers,
                 Rule::kw_const => storage = Storage::Const,
-                Rule::ident | Rule::ph_id => names.push(self.ident(&item)),
+                Rule::ident | Rule::ph_id if ty.is_none() => ty = Some(self.ident(&item)),
+                Rule::ident | Rule::ph_id if name.is_none() => name = Some(self.ident(&item)),
                 Rule::dims => dims = self.dims(item)?,
                 Rule::expr | Rule::simple_operand => init = Some(self.expr(item)?),
                 _ => {}
@@ -39,15 +42,12 @@ impl Builder<'_, '_> {
                 help: "`TASK` applies only to PERS data (`TASK PERS type name := value;`)",
             });
         }
-        let mut names = names.into_iter();
-        let ty = names.next()?;
-        let name = names.next()?;
         Some(DataDecl {
             local,
             task: task.is_some(),
             storage,
-            ty,
-            name,
+            ty: ty?,
+            name: name?,
             dims,
             init,
             span,

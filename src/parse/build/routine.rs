@@ -37,19 +37,21 @@ impl Builder<'_, '_> {
     /// A `routine` pair.
     pub(crate) fn routine(&mut self, p: Pair<'_>) -> Option<Routine> {
         let span = self.span(&p);
+        let start = self.start(&p);
         let errors_before = self.errors;
         let mut local = false;
         let mut head = None;
+        let items = p.into_inner();
         let mut data: Vec<DataDecl> = Vec::new();
-        let mut body: Vec<Stmt> = Vec::new();
+        // (At most one statement per remaining pair: no reallocation while the body grows.)
+        let mut body: Vec<Stmt> = Vec::with_capacity(items.len());
         let mut backward = None;
         let mut error: Option<ErrorHandler> = None;
         let mut undo = None;
         let mut section = Section::Body;
         let mut seen_stmt = false;
         let mut end = None;
-        let start = self.start(&p);
-        for item in p.into_inner() {
+        for item in items {
             match item.as_rule() {
                 Rule::kw_local => local = true,
                 Rule::proc_head | Rule::func_head | Rule::trap_head => {

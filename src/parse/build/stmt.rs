@@ -184,7 +184,7 @@ impl Builder<'_, '_> {
                 stmt: Box::new(stmt),
             });
         }
-        let mut then_body = Vec::new();
+        let mut then_body = Vec::with_capacity(inner.size_hint().0);
         let mut elseifs = Vec::new();
         let mut else_body = None;
         for p in inner {
