@@ -18,6 +18,7 @@ mod names;
 mod pratt;
 mod prescan;
 mod recover;
+mod split;
 mod structure;
 
 pub use error::{ParseError, ParseErrorKind};
@@ -35,7 +36,55 @@ pub const MAX_ERRORS_PER_FILE: usize = 100;
 /// Parse one file. Always returns a (possibly partial) AST; every syntax error, including
 /// `ENDPROC`/`ENDFUNC` mismatches and statements outside routines, goes into `diags`.
 pub fn parse_file(id: SourceId, text: &str, diags: &mut Diagnostics) -> ast::File {
-    build::parse(id, text, diags)
+    build::parse(id, text, diags, &ParseOptions::default())
+}
+
+/// [`parse_file`] with explicit [`ParseOptions`]. The AST and the diagnostics do not depend
+/// on the options: only the time it takes does.
+pub fn parse_file_with(
+    id: SourceId,
+    text: &str,
+    diags: &mut Diagnostics,
+    options: &ParseOptions,
+) -> ast::File {
+    build::parse(id, text, diags, options)
+}
+
+/// How the parser may use the machine's cores.
+///
+/// A module body of at least [`parallel_min_bytes`](Self::parallel_min_bytes) is cut at lines
+/// that start a routine and its pieces are parsed on up to [`threads`](Self::threads) threads;
+/// if any piece reports a problem, the module is parsed again in one piece, so diagnostics are
+/// exactly those of a one-thread parse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParseOptions {
+    /// Threads one file may be parsed on (1: only the calling thread).
+    pub threads: usize,
+    /// The smallest module body, in bytes, that is worth cutting into pieces.
+    pub parallel_min_bytes: usize,
+}
+
+impl ParseOptions {
+    /// Parse on the calling thread only.
+    pub fn single_thread() -> Self {
+        ParseOptions {
+            threads: 1,
+            ..ParseOptions::default()
+        }
+    }
+}
+
+impl Default for ParseOptions {
+    /// As many threads as the machine runs in parallel (at most 8); bodies of 256 KiB and up.
+    fn default() -> Self {
+        // (Asked once: the answer reads cgroup files.)
+        static THREADS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+        ParseOptions {
+            threads: *THREADS
+                .get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(8))),
+            parallel_min_bytes: 256 << 10,
+        }
+    }
 }
 
 /// Structural checks on a parsed file: duplicate routine, data and type names in a module,

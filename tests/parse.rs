@@ -413,3 +413,129 @@ mod properties {
         }
     }
 }
+
+/// A module body cut into pieces parsed on several threads gives the same AST and the same
+/// diagnostics as a parse in one piece, for clean and broken programs alike.
+mod parallel {
+    use super::*;
+    use proptest::prelude::*;
+    use rapidvc::parse::ParseOptions;
+
+    /// The AST dump and rendered diagnostics of `text` parsed with `options`.
+    fn outcome(text: &str, options: &ParseOptions) -> (String, String) {
+        let mut map = SourceMap::new();
+        let id = map.add("cut.mod", text);
+        let mut diags = Diagnostics::new();
+        let file = parse::parse_file_with(id, text, &mut diags, options);
+        parse::check_structure(&file, &mut diags);
+        (file.dump(), diags.render_plain(&map, 80))
+    }
+
+    /// Every routine start is a cut, on three threads.
+    fn cut_everywhere() -> ParseOptions {
+        ParseOptions {
+            threads: 3,
+            parallel_min_bytes: 1,
+        }
+    }
+
+    fn assert_same(name: &str, text: &str) {
+        let one = outcome(text, &ParseOptions::single_thread());
+        let cut = outcome(text, &cut_everywhere());
+        assert!(
+            one == cut,
+            "{name}: a cut parse differs from a one-piece parse"
+        );
+    }
+
+    #[test]
+    fn large_generated_program() {
+        let text = gen_program::program(600 << 10);
+        // (Large enough to be cut with the default options too.)
+        let one = outcome(&text, &ParseOptions::single_thread());
+        assert!(one.1.is_empty(), "{}", one.1);
+        assert!(one == outcome(&text, &ParseOptions::default()));
+        assert!(
+            one == outcome(
+                &text,
+                &ParseOptions {
+                    threads: 8,
+                    ..ParseOptions::default()
+                }
+            )
+        );
+        assert!(one == outcome(&text, &cut_everywhere()));
+    }
+
+    #[test]
+    fn every_program_and_test_input() {
+        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+        let dirs = [
+            "programs",
+            "stdlib",
+            "tests/parse/ok",
+            "tests/parse/err",
+            "tests/run",
+        ];
+        let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
+            .expect("RAPID files in the repository");
+        assert!(files.len() > 20);
+        for path in files {
+            let mut map = SourceMap::new();
+            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
+            assert_same(&path.display().to_string(), &map.get(id).text);
+        }
+    }
+
+    /// Lines a cut is made at, or that make a cut wrong, inserted at line starts.
+    const LINES: &[&str] = &[
+        "PROC q()",
+        "LOCAL PROC q()",
+        "  func num f()",
+        "TRAP t",
+        "ENDPROC",
+        "ENDFUNC",
+        "ENDMODULE",
+        "MODULE n",
+        "\"",
+        "! PROC in a comment",
+        "VAR num x;",
+        "IF TRUE THEN",
+        "<SMT>",
+        "PROC",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+        #[test]
+        fn mutated_programs_parse_the_same_cut_or_not(
+            seed in 0usize..4,
+            inserts in prop::collection::vec((any::<usize>(), prop::sample::select(LINES)), 0..4),
+            deletes in prop::collection::vec(any::<usize>(), 0..3),
+        ) {
+            let mut text = match seed {
+                0 => gen_program::program(24 << 10),
+                _ => {
+                    let programs = manual_programs();
+                    std::fs::read_to_string(&programs[seed % programs.len()]).expect("program")
+                }
+            };
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            for (at, line) in inserts {
+                let n = lines.len() + 1;
+                lines.insert(at % n, format!("{line}\n"));
+            }
+            for at in deletes {
+                if !lines.is_empty() {
+                    let n = lines.len();
+                    lines.remove(at % n);
+                }
+            }
+            text = lines.concat();
+            let one = outcome(&text, &ParseOptions::single_thread());
+            let cut = outcome(&text, &cut_everywhere());
+            prop_assert!(one == cut, "cut parse differs:\n{}\n--- vs ---\n{}", one.1, cut.1);
+        }
+    }
+}

@@ -6,7 +6,7 @@ use pest::Parser;
 use super::error::{ParseError, ParseErrorKind};
 use super::grammar::{Pair, RapidParser, Rule};
 use super::recover::{self, Region};
-use super::{MAX_ERRORS_PER_FILE, MAX_NESTING, prescan};
+use super::{MAX_ERRORS_PER_FILE, MAX_NESTING, ParseOptions, prescan};
 use crate::ast::{self, Ident};
 use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span, Spanned};
@@ -15,6 +15,7 @@ mod decl;
 mod expr;
 mod literal;
 mod module;
+mod parallel;
 mod routine;
 mod stmt;
 
@@ -33,7 +34,12 @@ pub(crate) struct Builder<'t, 'd> {
 }
 
 /// Parse and build one file (see [`super::parse_file`]).
-pub(crate) fn parse(file: SourceId, text: &str, diags: &mut Diagnostics) -> ast::File {
+pub(crate) fn parse(
+    file: SourceId,
+    text: &str,
+    diags: &mut Diagnostics,
+    options: &ParseOptions,
+) -> ast::File {
     let whole = Span::new(file, 0, text.len());
     let mut b = Builder {
         file,
@@ -64,7 +70,7 @@ pub(crate) fn parse(file: SourceId, text: &str, diags: &mut Diagnostics) -> ast:
         return empty;
     }
     let mut out = empty;
-    b.file_pieces(&mut out);
+    b.file_pieces(&mut out, options);
     out
 }
 
@@ -165,9 +171,11 @@ impl<'t> Builder<'t, '_> {
 
     /// Parse and build the file piece by piece: outside a module, one `entry_top` at a time
     /// (header, module head, or junk); inside, one `entry_module` (up to 16 items, or the end).
-    fn file_pieces(&mut self, out: &mut ast::File) {
+    fn file_pieces(&mut self, out: &mut ast::File, options: &ParseOptions) {
         let mut pos = 0;
         let mut module: Option<ModuleUnderConstruction<'t>> = None;
+        // Whether the open module's body was offered to `parallel_items`.
+        let mut offered = false;
         let mut reported_top = false;
         let mut stalls = 0;
         loop {
@@ -197,7 +205,10 @@ impl<'t> Builder<'t, '_> {
             let mut done = false;
             for item in piece.into_inner() {
                 match item.as_rule() {
-                    Rule::module_open => module = Some(self.module_open(item)),
+                    Rule::module_open => {
+                        module = Some(self.module_open(item));
+                        offered = false;
+                    }
                     Rule::bad_top => {
                         self.skipped(&item, Region::Top);
                         reported_top = true;
@@ -218,6 +229,16 @@ impl<'t> Builder<'t, '_> {
             pos += len;
             if done {
                 break;
+            }
+            if let Some(m) = module.as_mut()
+                && !offered
+            {
+                offered = true;
+                if let Some(end) = self.parallel_items(m, pos, options) {
+                    pos = end;
+                    stalls = 0;
+                    continue;
+                }
             }
             // Only a module's missing end consumes nothing, and the next piece then does:
             // two empty pieces in a row would mean a loop.

@@ -1,0 +1,142 @@
+//! A large module body parsed on several threads.
+//!
+//! The body is cut at lines that start a routine (`split.rs` says why such a line is always
+//! between two items of a clean program). Each piece is parsed and built on its own thread,
+//! with its own [`Builder`] and diagnostics, as a run of module items that must end exactly at
+//! the next cut. The last routine and the module's end stay with the ordinary driver. When any
+//! piece reports a problem or does not end at its cut, every piece is dropped and the driver
+//! parses the body in one go, so the diagnostics of a broken file are exactly those of a
+//! one-thread parse (the cost of a broken file is at most one extra parse of its body).
+
+use pest::Parser;
+
+use super::{Builder, ModuleUnderConstruction};
+use crate::ast::{Module, ModuleItem};
+use crate::diag::Diagnostics;
+use crate::parse::grammar::{RapidParser, Rule};
+use crate::parse::{ParseOptions, split};
+use crate::source::{SourceId, Span, Spanned};
+
+/// Stack of a piece's thread: like the main thread's, so the nesting bound of
+/// [`crate::parse::MAX_NESTING`] holds there too (only the pages used are committed).
+const PIECE_STACK: usize = 8 << 20;
+
+/// The items built from one piece and the span they cover.
+type Piece = (Vec<ModuleItem>, Span);
+
+impl<'t> Builder<'t, '_> {
+    /// Build the items of the module `m`, whose body starts at `from`, on several threads, up to
+    /// the start of its last routine. Returns where the ordinary driver goes on, or `None` when
+    /// the body is too small, cannot be cut, or a piece reported a problem (then nothing was
+    /// added to `m`).
+    pub(crate) fn parallel_items(
+        &mut self,
+        m: &mut ModuleUnderConstruction<'t>,
+        from: usize,
+        options: &ParseOptions,
+    ) -> Option<usize> {
+        let threads = options.threads;
+        let min = options.parallel_min_bytes;
+        if threads < 2 || self.errors > 0 || self.text.len().saturating_sub(from) < min {
+            return None;
+        }
+        let starts = split::routine_starts(self.text, from, min / (threads * 4));
+        let last = *starts.last()?;
+        if last - from < min {
+            return None;
+        }
+        // Cuts at about equal distances, each at the first routine start past its mark.
+        let mut cuts = vec![from];
+        for k in 1..threads {
+            let mark = from + (last - from) * k / threads;
+            let i = starts.partition_point(|&s| s < mark);
+            if let Some(&c) = starts.get(i)
+                && c > *cuts.last()?
+                && c < last
+            {
+                cuts.push(c);
+            }
+        }
+        cuts.push(last);
+        if cuts.len() < 3 {
+            return None;
+        }
+        let (file, text) = (self.file, self.text);
+        let pieces: Vec<Option<Piece>> = std::thread::scope(|scope| {
+            let mut handles = Vec::new();
+            let mut inline = Vec::new();
+            for w in cuts.windows(2).skip(1) {
+                let (a, b) = (w[0], w[1]);
+                let spawned = std::thread::Builder::new()
+                    .name("rapidvc-parse".into())
+                    .stack_size(PIECE_STACK)
+                    .spawn_scoped(scope, move || piece(file, text, a, b));
+                match spawned {
+                    Ok(h) => handles.push(h),
+                    // No thread to be had: this piece is built here, after the first.
+                    Err(_) => inline.push((a, b)),
+                }
+            }
+            let mut out = vec![piece(file, text, cuts[0], cuts[1])];
+            out.extend(handles.into_iter().map(|h| h.join().ok().flatten()));
+            out.extend(inline.into_iter().map(|(a, b)| piece(file, text, a, b)));
+            out
+        });
+        // (Pieces built inline come last in `pieces` but not in the text: order by span.)
+        let mut pieces = pieces.into_iter().collect::<Option<Vec<Piece>>>()?;
+        pieces.sort_by_key(|(_, span)| span.start);
+        for (items, span) in pieces {
+            m.module.items.extend(items);
+            m.module.span = m.module.span.merge(span);
+        }
+        Some(last)
+    }
+}
+
+/// Parse and build the items of `text[from..to]`, which must be whole module items only;
+/// `None` if anything in it is not.
+fn piece(file: SourceId, text: &str, from: usize, to: usize) -> Option<Piece> {
+    let mut diags = Diagnostics::new();
+    let mut b = Builder {
+        file,
+        text,
+        diags: &mut diags,
+        base: from,
+        errors: 0,
+        stopped: false,
+        scratch: Vec::new(),
+    };
+    let at = Span::new(file, from, from);
+    let mut m = ModuleUnderConstruction {
+        module: Module {
+            name: Spanned::new(String::new(), at),
+            attrs: Vec::new(),
+            items: Vec::new(),
+            span: at,
+        },
+        opener: at,
+        opener_text: "",
+    };
+    let mut pos = from;
+    loop {
+        let piece = RapidParser::parse(Rule::entry_module, text.get(pos..to)?)
+            .ok()?
+            .next()?;
+        b.base = pos;
+        let len = piece.as_span().end();
+        for item in piece.into_inner() {
+            if item.as_rule() == Rule::module_end {
+                // Only "no ENDMODULE" at the very end of the piece ends it well.
+                let end = item.into_inner().next()?;
+                let clean = end.as_rule() == Rule::missing_endmodule && b.start(&end) == to;
+                drop(b);
+                return (clean && diags.is_empty()).then_some((m.module.items, m.module.span));
+            }
+            b.module_item(&mut m, item);
+        }
+        if len == 0 || b.errors > 0 {
+            return None;
+        }
+        pos += len;
+    }
+}
