@@ -4,6 +4,7 @@
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use miette::{GraphicalReportHandler, GraphicalTheme};
 
@@ -11,7 +12,7 @@ use crate::ast;
 use crate::diag::Diagnostics;
 use crate::load;
 use crate::parse;
-use crate::source::SourceMap;
+use crate::source::{SourceId, SourceMap};
 
 /// Arguments of `rapidvc check`.
 #[derive(Debug, clap::Args)]
@@ -64,19 +65,20 @@ pub fn run(args: CheckArgs) -> ExitCode {
     let mut map = SourceMap::new();
     let mut diags = Diagnostics::new();
     let mut io_failed = false;
-    let mut parsed: Vec<ast::File> = Vec::with_capacity(files.len());
+    let mut ids = Vec::with_capacity(files.len());
     for path in &files {
         match load::load_file(&mut map, path) {
-            Ok(id) => {
-                let file = parse::parse_file(id, &map.get(id).text, &mut diags);
-                parse::check_structure(&file, &mut diags);
-                parsed.push(file);
-            }
+            Ok(id) => ids.push(id),
             Err(e) => {
                 eprintln!("error: {e}");
                 io_failed = true;
             }
         }
+    }
+    let mut parsed: Vec<ast::File> = Vec::with_capacity(ids.len());
+    for (file, file_diags) in parse_all(&map, &ids) {
+        diags.extend(file_diags);
+        parsed.push(file);
     }
     match depth {
         Depth::Syntax => {}
@@ -98,6 +100,55 @@ pub fn run(args: CheckArgs) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// Parse and structure-check the files `ids` of `map`, each on its own, on as many threads as
+/// the parser uses (a large file is also cut into pieces: see [`parse::ParseOptions`]). The
+/// result is in the order of `ids`, so the output does not depend on the threads.
+fn parse_all(map: &SourceMap, ids: &[SourceId]) -> Vec<(ast::File, Diagnostics)> {
+    let one = |id: SourceId| {
+        let mut d = Diagnostics::new();
+        let file = parse::parse_file(id, &map.get(id).text, &mut d);
+        parse::check_structure(&file, &mut d);
+        (file, d)
+    };
+    let threads = parse::ParseOptions::default().threads.min(ids.len());
+    if threads < 2 {
+        return ids.iter().map(|&id| one(id)).collect();
+    }
+    let next = AtomicUsize::new(0);
+    // Each worker takes the next file until none is left, and keeps what it built.
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(&id) = ids.get(i) else { break };
+            done.push((i, one(id)));
+        }
+        done
+    };
+    let mut results: Vec<Option<(ast::File, Diagnostics)>> = ids.iter().map(|_| None).collect();
+    let mut store = |done: Vec<(usize, (ast::File, Diagnostics))>| {
+        for (i, r) in done {
+            results[i] = Some(r);
+        }
+    };
+    std::thread::scope(|scope| {
+        let workers: Vec<_> = (1..threads)
+            .filter_map(|_| std::thread::Builder::new().spawn_scoped(scope, work).ok())
+            .collect();
+        store(work());
+        for w in workers {
+            if let Ok(done) = w.join() {
+                store(done);
+            }
+        }
+    });
+    // (A file no worker delivered is parsed here.)
+    ids.iter()
+        .zip(results)
+        .map(|(&id, r)| r.unwrap_or_else(|| one(id)))
+        .collect()
 }
 
 fn report(diags: &Diagnostics, map: &SourceMap, format: Format, files: usize) {
