@@ -14,6 +14,7 @@ use crate::source::SourceId;
 mod build;
 pub mod error;
 mod grammar;
+mod marks;
 mod names;
 mod pratt;
 mod prescan;
