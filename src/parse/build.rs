@@ -73,7 +73,11 @@ pub(crate) fn parse(
         });
         return empty;
     }
-    let marked = marks::mark(text);
+    let marked = if options.lexical_marks {
+        marks::mark(text)
+    } else {
+        marks::unmarked(text)
+    };
     b.marked = &marked;
     let mut out = empty;
     b.file_pieces(&mut out, options);

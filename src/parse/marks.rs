@@ -51,16 +51,7 @@ const MAX_DEPTH: usize = 64;
 /// The marked copy of `text` (see the module documentation).
 pub(crate) fn mark(text: &str) -> String {
     let b = text.as_bytes();
-    let mut out = b.to_vec();
-    // Mark characters in the text itself become neutral (rare: only in binary junk).
-    // (Branch-free, so the compiler vectorises it: OPEN, CLOSE and NAME are 1, 2 and 3.)
-    for o in &mut out {
-        *o = if o.wrapping_sub(OPEN) < 3 {
-            NEUTRAL
-        } else {
-            *o
-        };
-    }
+    let mut out = neutralised(b);
     let mut i = 0;
     while i < b.len() {
         let c = b[i];
@@ -95,6 +86,27 @@ pub(crate) fn mark(text: &str) -> String {
     }
     // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
     String::from_utf8(out).unwrap_or_else(|_| text.to_string())
+}
+
+/// The copy of `text` pest reads without the pre-pass: only the mark characters the text
+/// itself holds are made neutral, so that pest sees the same characters as with the marks
+/// wherever there are none. (Tests compare the two parses: see `ParseOptions::lexical_marks`.)
+pub(crate) fn unmarked(text: &str) -> String {
+    String::from_utf8(neutralised(text.as_bytes())).unwrap_or_else(|_| text.to_string())
+}
+
+/// `b` with the mark characters it holds replaced by [`NEUTRAL`] (rare: only in binary junk).
+fn neutralised(b: &[u8]) -> Vec<u8> {
+    let mut out = b.to_vec();
+    // (Branch-free, so the compiler vectorises it: OPEN, CLOSE and NAME are 1, 2 and 3.)
+    for o in &mut out {
+        *o = if o.wrapping_sub(OPEN) < 3 {
+            NEUTRAL
+        } else {
+            *o
+        };
+    }
+    out
 }
 
 /// Letters, digits and `_`.

@@ -109,7 +109,7 @@ mod tests {
         let text = "MODULE m PROC a()\nENDPROC\nPROC b()\nENDPROC\nPROC c()\nENDPROC\nENDMODULE";
         let all = routine_starts(text, 8, 0);
         assert_eq!(all.len(), 2);
-        let sparse = routine_starts(text, 8, 17);
+        let sparse = routine_starts(text, 8, 18);
         assert_eq!(sparse.len(), 1);
     }
 }

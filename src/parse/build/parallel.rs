@@ -79,7 +79,11 @@ impl<'t> Builder<'t, '_> {
             }
             let mut out = vec![piece(file, text, marked, cuts[0], cuts[1])];
             out.extend(handles.into_iter().map(|h| h.join().ok().flatten()));
-            out.extend(inline.into_iter().map(|(a, b)| piece(file, text, marked, a, b)));
+            out.extend(
+                inline
+                    .into_iter()
+                    .map(|(a, b)| piece(file, text, marked, a, b)),
+            );
             out
         });
         // (Pieces built inline come last in `pieces` but not in the text: order by span.)
