@@ -436,6 +436,7 @@ mod parallel {
         ParseOptions {
             threads: 3,
             parallel_min_bytes: 1,
+            ..ParseOptions::default()
         }
     }
 
@@ -536,6 +537,153 @@ mod parallel {
             let one = outcome(&text, &ParseOptions::single_thread());
             let cut = outcome(&text, &cut_everywhere());
             prop_assert!(one == cut, "cut parse differs:\n{}\n--- vs ---\n{}", one.1, cut.1);
+        }
+    }
+}
+
+/// The lexical pre-pass (`parse/marks.rs`) changes nothing but speed: the same AST and the
+/// same diagnostics with and without it, for clean, broken and binary input.
+mod lexical_marks {
+    use super::*;
+    use proptest::prelude::*;
+    use rapidvc::parse::ParseOptions;
+
+    fn outcome(text: &str, lexical_marks: bool) -> (String, String) {
+        let mut map = SourceMap::new();
+        let id = map.add("marks.mod", text);
+        let mut diags = Diagnostics::new();
+        let options = ParseOptions {
+            lexical_marks,
+            ..ParseOptions::single_thread()
+        };
+        let file = parse::parse_file_with(id, text, &mut diags, &options);
+        parse::check_structure(&file, &mut diags);
+        (file.dump(), diags.render_plain(&map, 80))
+    }
+
+    fn assert_same(name: &str, text: &str) -> Result<(), TestCaseError> {
+        let (with, without) = (outcome(text, true), outcome(text, false));
+        prop_assert!(
+            with == without,
+            "{name}: the pre-pass changed the result\n{}\n--- without ---\n{}",
+            with.1,
+            without.1
+        );
+        Ok(())
+    }
+
+    #[test]
+    fn every_program_and_test_input() {
+        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+        let dirs = [
+            "programs",
+            "stdlib",
+            "tests/parse/ok",
+            "tests/parse/err",
+            "tests/run",
+            "tests/rapid",
+        ];
+        let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
+            .expect("RAPID files in the repository");
+        for path in files {
+            let mut map = SourceMap::new();
+            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
+            assert_same(&path.display().to_string(), &map.get(id).text).expect("same result");
+        }
+        assert_same("generated", &gen_program::program(200 << 10)).expect("same result");
+    }
+
+    /// Text that looks like RAPID where names, numbers, aggregates, components and
+    /// placeholders meet every kind of neighbour.
+    const PIECES: &[&str] = &[
+        "x",
+        "ab_1",
+        "If",
+        "endif",
+        "NOT",
+        "a.b",
+        "1.e5",
+        "1e5",
+        "0x1F",
+        ".5",
+        "1.",
+        "9E+09",
+        "[",
+        "]",
+        "[1,2]",
+        "[[1,2],[3]]",
+        "[a,b]",
+        "[-1,+2.5]",
+        "{",
+        "}",
+        "(",
+        ")",
+        "<ID>",
+        "<EXP>",
+        "<SMT>",
+        "\\",
+        "\\Sw",
+        ":=",
+        ":",
+        ";",
+        ",",
+        ".",
+        "?",
+        "%",
+        "\"",
+        "\"s\"",
+        "!c\n",
+        "\n",
+        " ",
+        "\t",
+        "\r\n",
+        "\u{1}",
+        "\u{3}",
+        "é",
+        "MODULE m\n",
+        "PROC p()\n",
+        "ENDPROC\n",
+        "ENDMODULE\n",
+        "VAR num n:=",
+        "CONST robtarget p:=",
+        "MoveL ",
+        "TRUE",
+        "_x",
+        "x_",
+        "1_",
+        "a1.x",
+        "f(a).x",
+        "a{1}.x",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+        #[test]
+        fn token_soup(pieces in prop::collection::vec(prop::sample::select(PIECES), 0..60)) {
+            let text = format!("MODULE m\nPROC p()\n{}\nENDPROC\nENDMODULE\n", pieces.concat());
+            assert_same("soup", &text)?;
+            assert_same("bare soup", &pieces.concat())?;
+        }
+
+        #[test]
+        fn mutated_programs(
+            which in 0usize..3,
+            edits in prop::collection::vec((any::<usize>(), any::<u8>(), 0u8..3), 1..6),
+        ) {
+            let programs = manual_programs();
+            let text = std::fs::read_to_string(&programs[which % programs.len()]).expect("program");
+            let mut bytes = text.into_bytes();
+            for (at, byte, kind) in edits {
+                let at = at % (bytes.len() + 1);
+                match kind {
+                    0 => bytes.insert(at, byte),
+                    1 if at < bytes.len() => { bytes.remove(at); }
+                    _ if at < bytes.len() => bytes[at] = byte,
+                    _ => {}
+                }
+            }
+            assert_same("mutated", &rapidvc::source::decode_bytes(&bytes))?;
         }
     }
 }

@@ -6,7 +6,7 @@ use pest::Parser;
 use super::error::{ParseError, ParseErrorKind};
 use super::grammar::{Pair, RapidParser, Rule};
 use super::recover::{self, Region};
-use super::{MAX_ERRORS_PER_FILE, MAX_NESTING, ParseOptions, prescan};
+use super::{MAX_ERRORS_PER_FILE, MAX_NESTING, ParseOptions, marks, prescan};
 use crate::ast::{self, Ident};
 use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span, Spanned};
@@ -22,7 +22,10 @@ mod stmt;
 /// State shared by the builders of one file.
 pub(crate) struct Builder<'t, 'd> {
     pub(crate) file: SourceId,
+    /// The text as written: every token is read from it.
     pub(crate) text: &'t str,
+    /// The same text with the pre-pass marks (`marks.rs`): what pest parses.
+    marked: &'t str,
     diags: &'d mut Diagnostics,
     /// Byte offset of the piece being built: pest parses `&text[base..]`.
     base: usize,
@@ -44,6 +47,7 @@ pub(crate) fn parse(
     let mut b = Builder {
         file,
         text,
+        marked: text,
         diags,
         base: 0,
         errors: 0,
@@ -69,6 +73,12 @@ pub(crate) fn parse(
         });
         return empty;
     }
+    let marked = if options.lexical_marks {
+        marks::mark(text)
+    } else {
+        marks::unmarked(text)
+    };
+    b.marked = &marked;
     let mut out = empty;
     b.file_pieces(&mut out, options);
     out
@@ -91,9 +101,18 @@ impl<'t> Builder<'t, '_> {
         self.base + p.as_span().end()
     }
 
+    /// The text of a pair as written. (Pest reads a copy with the pre-pass marks of
+    /// `marks.rs`: a pair's own `as_str` may hold a mark instead of a name's first letter.)
+    pub(crate) fn text_of(&self, p: &Pair<'_>) -> &'t str {
+        let s = p.as_span();
+        self.text
+            .get(self.base + s.start()..self.base + s.end())
+            .unwrap_or("")
+    }
+
     /// An identifier from an `ident` (or `<ID>`) pair.
     pub(crate) fn ident(&self, p: &Pair<'_>) -> Ident {
-        Spanned::new(p.as_str().to_string(), self.span(p))
+        Spanned::new(self.text_of(p).to_string(), self.span(p))
     }
 
     /// Report an error (up to [`MAX_ERRORS_PER_FILE`] per file).
@@ -149,7 +168,12 @@ impl<'t> Builder<'t, '_> {
     /// Report a missing end keyword: `end` is the `missing_end`-like pair, `opener` the
     /// keyword that opened the construct.
     pub(crate) fn missing_end(&mut self, end: &Pair<'_>, opener: &Pair<'_>, keyword: &'static str) {
-        self.missing_end_at(self.start(end), self.span(opener), opener.as_str(), keyword);
+        self.missing_end_at(
+            self.start(end),
+            self.span(opener),
+            self.text_of(opener),
+            keyword,
+        );
     }
 
     /// Report a missing end keyword expected at byte `pos`.
@@ -184,7 +208,7 @@ impl<'t> Builder<'t, '_> {
             } else {
                 Rule::entry_top
             };
-            let rest = self.text.get(pos..).unwrap_or("");
+            let rest = self.marked.get(pos..).unwrap_or("");
             let piece = match RapidParser::parse(rule, rest) {
                 Ok(mut pairs) => pairs.next(),
                 Err(e) => {

@@ -7,6 +7,7 @@ pub(crate) mod diag;
 /// The fast parser: punctuation is silent (no pairs), recovery rules are included.
 #[derive(pest_derive::Parser)]
 #[grammar = "grammar/lexical.pest"]
+#[grammar = "grammar/marks_fast.pest"]
 #[grammar = "grammar/tokens.pest"]
 #[grammar = "grammar/expr.pest"]
 #[grammar = "grammar/stmt.pest"]

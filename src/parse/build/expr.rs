@@ -28,7 +28,10 @@ impl Builder<'_, '_> {
     fn expr_at(&mut self, p: Pair<'_>, depth: usize) -> Built {
         let span = self.span(&p);
         if p.as_rule() == Rule::simple_operand {
-            let kind = if p.as_str().starts_with(|c: char| c.is_ascii_alphabetic()) {
+            let kind = if self
+                .text_of(&p)
+                .starts_with(|c: char| c.is_ascii_alphabetic())
+            {
                 ExprKind::Name(self.ident(&p))
             } else {
                 ExprKind::Num(self.number(&p))
@@ -66,7 +69,7 @@ impl Builder<'_, '_> {
             if op.as_rule() != Rule::infix_op {
                 break;
             }
-            let Some((bin, level)) = pratt::infix(op.as_str()) else {
+            let Some((bin, level)) = pratt::infix(self.text_of(op)) else {
                 break;
             };
             if level < min {
@@ -99,7 +102,7 @@ impl Builder<'_, '_> {
     ) -> Built {
         let p = it.next()?;
         let span = self.span(&p);
-        let unary = match (p.as_rule(), p.as_str()) {
+        let unary = match (p.as_rule(), self.text_of(&p)) {
             (Rule::prefix_op, "-") => Some((UnaryOp::Neg, pratt::sign_operand_level(min))),
             (Rule::prefix_op, "+") => Some((UnaryOp::Plus, pratt::sign_operand_level(min))),
             (Rule::prefix_op, _) => {
@@ -141,7 +144,7 @@ impl Builder<'_, '_> {
             }
             Rule::kw_true => leaf(ExprKind::Bool(true)),
             Rule::kw_false => leaf(ExprKind::Bool(false)),
-            Rule::ph_expr => leaf(ExprKind::Placeholder(placeholder(p.as_str()))),
+            Rule::ph_expr => leaf(ExprKind::Placeholder(placeholder(self.text_of(&p)))),
             Rule::paren => {
                 let inner = p.into_inner().next()?;
                 let (e, d) = self.expr_at(inner, depth)?;
@@ -251,7 +254,7 @@ impl Builder<'_, '_> {
         let span = self.span(&first);
         if first.as_rule() == Rule::ph_expr {
             return Some(Expr {
-                kind: ExprKind::Placeholder(placeholder(first.as_str())),
+                kind: ExprKind::Placeholder(placeholder(self.text_of(&first))),
                 span,
             });
         }

@@ -14,7 +14,7 @@ const NUM_MAX: f64 = f32::MAX as f64;
 impl Builder<'_, '_> {
     /// The value of a `number` pair; out-of-range values are reported (and kept as parsed).
     pub(crate) fn number(&mut self, p: &Pair<'_>) -> f64 {
-        self.number_text(p.as_str(), self.span(p))
+        self.number_text(self.text_of(p), self.span(p))
     }
 
     /// The value of the number literal `text` written at `span`.
@@ -35,7 +35,7 @@ impl Builder<'_, '_> {
     /// The value of a `string` pair with escapes decoded; invalid escapes are reported and
     /// kept as written.
     pub(crate) fn string(&mut self, p: &Pair<'_>) -> String {
-        self.string_text(p.as_str(), self.start(p))
+        self.string_text(self.text_of(p), self.start(p))
     }
 
     /// The value of the string literal `raw` (with its quotes) written at byte `start`.
@@ -99,7 +99,7 @@ impl Builder<'_, '_> {
         p: &Pair<'_>,
         depth: usize,
     ) -> Option<(Expr, usize)> {
-        let text = p.as_str();
+        let text = self.text_of(p);
         let base = self.start(p);
         let mut pos = 0;
         self.lit_aggregate(text, base, &mut pos, depth)

@@ -17,7 +17,7 @@ impl<'t> Builder<'t, '_> {
         let mut inner = p.into_inner();
         let kw = inner.next();
         let opener = kw.as_ref().map_or(span, |k| self.span(k));
-        let opener_text = kw.as_ref().map_or("MODULE", |k| k.as_str());
+        let opener_text = kw.as_ref().map_or("MODULE", |k| self.text_of(k));
         for item in inner {
             match item.as_rule() {
                 Rule::ident | Rule::ph_id if name.is_none() => name = Some(self.ident(&item)),
@@ -71,10 +71,9 @@ impl<'t> Builder<'t, '_> {
             Rule::alias_decl => self.alias(item).map(ModuleItem::Alias),
             Rule::data_decl => self.data_decl(item).map(ModuleItem::Data),
             Rule::routine => self.routine(item).map(ModuleItem::Routine),
-            Rule::item_placeholder => item
-                .into_inner()
-                .next()
-                .map(|ph| ModuleItem::Placeholder(Spanned::new(placeholder(ph.as_str()), span))),
+            Rule::item_placeholder => item.into_inner().next().map(|ph| {
+                ModuleItem::Placeholder(Spanned::new(placeholder(self.text_of(&ph)), span))
+            }),
             Rule::bad_item => {
                 self.skipped(&item, Region::Item);
                 None

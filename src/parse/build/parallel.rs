@@ -61,7 +61,7 @@ impl<'t> Builder<'t, '_> {
         if cuts.len() < 3 {
             return None;
         }
-        let (file, text) = (self.file, self.text);
+        let (file, text, marked) = (self.file, self.text, self.marked);
         let pieces: Vec<Option<Piece>> = std::thread::scope(|scope| {
             let mut handles = Vec::new();
             let mut inline = Vec::new();
@@ -70,16 +70,20 @@ impl<'t> Builder<'t, '_> {
                 let spawned = std::thread::Builder::new()
                     .name("rapidvc-parse".into())
                     .stack_size(PIECE_STACK)
-                    .spawn_scoped(scope, move || piece(file, text, a, b));
+                    .spawn_scoped(scope, move || piece(file, text, marked, a, b));
                 match spawned {
                     Ok(h) => handles.push(h),
                     // No thread to be had: this piece is built here, after the first.
                     Err(_) => inline.push((a, b)),
                 }
             }
-            let mut out = vec![piece(file, text, cuts[0], cuts[1])];
+            let mut out = vec![piece(file, text, marked, cuts[0], cuts[1])];
             out.extend(handles.into_iter().map(|h| h.join().ok().flatten()));
-            out.extend(inline.into_iter().map(|(a, b)| piece(file, text, a, b)));
+            out.extend(
+                inline
+                    .into_iter()
+                    .map(|(a, b)| piece(file, text, marked, a, b)),
+            );
             out
         });
         // (Pieces built inline come last in `pieces` but not in the text: order by span.)
@@ -94,12 +98,14 @@ impl<'t> Builder<'t, '_> {
 }
 
 /// Parse and build the items of `text[from..to]`, which must be whole module items only;
-/// `None` if anything in it is not.
-fn piece(file: SourceId, text: &str, from: usize, to: usize) -> Option<Piece> {
+/// `None` if anything in it is not. (`marked` is the text with the pre-pass marks: pest
+/// parses it, see `marks.rs`.)
+fn piece(file: SourceId, text: &str, marked: &str, from: usize, to: usize) -> Option<Piece> {
     let mut diags = Diagnostics::new();
     let mut b = Builder {
         file,
         text,
+        marked,
         diags: &mut diags,
         base: from,
         errors: 0,
@@ -119,7 +125,7 @@ fn piece(file: SourceId, text: &str, from: usize, to: usize) -> Option<Piece> {
     };
     let mut pos = from;
     loop {
-        let piece = RapidParser::parse(Rule::entry_module, text.get(pos..to)?)
+        let piece = RapidParser::parse(Rule::entry_module, marked.get(pos..to)?)
             .ok()?
             .next()?;
         b.base = pos;

@@ -141,13 +141,13 @@ impl Builder<'_, '_> {
             };
             if end.as_rule() == Rule::missing_routine_end {
                 self.missing_end(&end, &opener, expected);
-            } else if !end.as_str().eq_ignore_ascii_case(expected) {
+            } else if !self.text_of(&end).eq_ignore_ascii_case(expected) {
                 self.error(ParseErrorKind::EndMismatch {
                     span: self.span(&end),
                     head_span,
                     kind: &expected[3..],
                     name: name.node.clone(),
-                    found: end.as_str().to_string(),
+                    found: self.text_of(&end).to_string(),
                     expected,
                 });
             }
@@ -168,7 +168,7 @@ impl Builder<'_, '_> {
     }
 
     fn stray_keyword(&mut self, item: &Pair<'_>) {
-        let kw = item.as_str().to_string();
+        let kw = self.text_of(item).to_string();
         let opener = match kw.to_ascii_uppercase().as_str() {
             "ENDWHILE" => "WHILE",
             "ENDFOR" => "FOR",
@@ -293,7 +293,7 @@ impl Builder<'_, '_> {
                     open_dims = n.min(u8::MAX as usize) as u8;
                 }
                 Rule::ph_par => {
-                    ph = Some(placeholder(item.as_str()));
+                    ph = Some(placeholder(self.text_of(&item)));
                     span = span.merge(self.span(&item));
                     names.push(self.ident(&item));
                 }

@@ -81,7 +81,9 @@ impl Builder<'_, '_> {
                     args: self.call_args(inner)?,
                 }
             }
-            Rule::placeholder_stmt => StmtKind::Placeholder(placeholder(inner.next()?.as_str())),
+            Rule::placeholder_stmt => {
+                StmtKind::Placeholder(placeholder(self.text_of(&inner.next()?)))
+            }
             Rule::goto_stmt => {
                 inner.next();
                 StmtKind::Goto(self.ident(&inner.next()?))
@@ -204,7 +206,7 @@ impl Builder<'_, '_> {
                 Rule::ph_eit => {
                     let span = self.span(&p);
                     let cond = Expr {
-                        kind: crate::ast::ExprKind::Placeholder(placeholder(p.as_str())),
+                        kind: crate::ast::ExprKind::Placeholder(placeholder(self.text_of(&p))),
                         span,
                     };
                     elseifs.push((cond, Vec::new()));
@@ -261,7 +263,7 @@ impl Builder<'_, '_> {
                     let span = self.span(&p);
                     cases.push(TestCase {
                         values: vec![Expr {
-                            kind: crate::ast::ExprKind::Placeholder(placeholder(p.as_str())),
+                            kind: crate::ast::ExprKind::Placeholder(placeholder(self.text_of(&p))),
                             span,
                         }],
                         body: Vec::new(),

@@ -5,6 +5,7 @@
 /// "expected" list can name them.
 #[derive(pest_derive::Parser)]
 #[grammar = "grammar/lexical.pest"]
+#[grammar = "grammar/marks_diag.pest"]
 #[grammar = "grammar/tokens_diag.pest"]
 #[grammar = "grammar/expr.pest"]
 #[grammar = "grammar/stmt.pest"]
