@@ -97,5 +97,11 @@ impl Default for ParseOptions {
 /// duplicate parameter and data names in a routine, duplicate record components, and a
 /// warning for every placeholder.
 pub fn check_structure(file: &ast::File, diags: &mut Diagnostics) {
-    structure::check(file, diags)
+    structure::check(file, diags, &ParseOptions::default())
+}
+
+/// [`check_structure`] with explicit [`ParseOptions`] (a large file's items are checked on
+/// several threads); the diagnostics, and their order, do not depend on the options.
+pub fn check_structure_with(file: &ast::File, diags: &mut Diagnostics, options: &ParseOptions) {
+    structure::check(file, diags, options)
 }

@@ -414,8 +414,9 @@ mod properties {
     }
 }
 
-/// A module body cut into pieces parsed on several threads gives the same AST and the same
-/// diagnostics as a parse in one piece, for clean and broken programs alike.
+/// A module body cut into pieces parsed (and marked, and structure-checked) on several
+/// threads gives the same AST and the same diagnostics, in the same order, as one thread,
+/// for clean and broken programs alike.
 mod parallel {
     use super::*;
     use proptest::prelude::*;
@@ -427,7 +428,7 @@ mod parallel {
         let id = map.add("cut.mod", text);
         let mut diags = Diagnostics::new();
         let file = parse::parse_file_with(id, text, &mut diags, options);
-        parse::check_structure(&file, &mut diags);
+        parse::check_structure_with(&file, &mut diags, options);
         (file.dump(), diags.render_plain(&map, 80))
     }
 

@@ -66,18 +66,25 @@ pub(crate) fn parse(
         });
         return empty;
     }
-    if let Some((start, end)) = prescan::too_deep(text, MAX_NESTING) {
+    // The nesting bound is checked on this thread while other threads mark the text.
+    let threads = if text.len() >= options.parallel_min_bytes {
+        options.threads
+    } else {
+        1
+    };
+    let too_deep = || prescan::too_deep(text, MAX_NESTING);
+    let (deep, marked) = if options.lexical_marks {
+        marks::mark_alongside(text, threads, too_deep)
+    } else {
+        (too_deep(), marks::unmarked(text))
+    };
+    if let Some((start, end)) = deep {
         b.error(ParseErrorKind::NestingTooDeep {
             span: Span::new(file, start, end),
             limit: MAX_NESTING,
         });
         return empty;
     }
-    let marked = if options.lexical_marks {
-        marks::mark(text)
-    } else {
-        marks::unmarked(text)
-    };
     b.marked = &marked;
     let mut out = empty;
     b.file_pieces(&mut out, options);

@@ -49,27 +49,77 @@ const NEUTRAL: u8 = 0x04;
 const MAX_DEPTH: usize = 64;
 
 /// The marked copy of `text` (see the module documentation).
+#[cfg(test)]
 pub(crate) fn mark(text: &str) -> String {
+    mark_alongside(text, 1, || ()).1
+}
+
+/// The marked copy of `text`, made on up to `threads` threads, and the result of `first`, run
+/// on the calling thread meanwhile. The text is cut at line starts into runs marked each on
+/// its own: nothing but a literal aggregate spans lines, and one that spans a cut is left
+/// unmarked (an unmarked token is read by the plain rules, which is always correct).
+pub(crate) fn mark_alongside<R>(
+    text: &str,
+    threads: usize,
+    first: impl FnOnce() -> R,
+) -> (R, String) {
     let b = text.as_bytes();
     let mut out = neutralised(b);
-    let mut i = 0;
-    while i < b.len() {
+    let mut cuts = vec![0];
+    for k in 1..threads.max(1) {
+        let at = line_end(b, b.len() / threads * k) + 1;
+        if at > cuts[cuts.len() - 1] && at < b.len() {
+            cuts.push(at);
+        }
+    }
+    cuts.push(b.len());
+    let r = std::thread::scope(|scope| {
+        let mut rest: &mut [u8] = &mut out;
+        let mut own = None;
+        for w in cuts.windows(2) {
+            let (run, tail) = std::mem::take(&mut rest).split_at_mut(w[1] - w[0]);
+            rest = tail;
+            let from = w[0];
+            if from == 0 {
+                own = Some(run);
+            } else {
+                // (Without a thread, the run stays unmarked: slower, not different.)
+                let _ =
+                    std::thread::Builder::new().spawn_scoped(scope, move || mark_run(b, run, from));
+            }
+        }
+        let r = first();
+        if let Some(run) = own {
+            mark_run(b, run, 0);
+        }
+        r
+    });
+    // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
+    let marked = String::from_utf8(out).unwrap_or_else(|_| text.to_string());
+    (r, marked)
+}
+
+/// Mark `b[from..from + out.len()]` into `out` (which starts as its neutralised copy).
+fn mark_run(b: &[u8], out: &mut [u8], from: usize) {
+    let to = from + out.len();
+    let mut i = from;
+    while i < to {
         let c = b[i];
         match c {
             b'!' => i = line_end(b, i),
             b'"' => i = string(b, i).unwrap_or_else(|| line_end(b, i)),
             b'[' => match literal_aggregate(b, i, 0) {
-                Some(end) => {
-                    out[i] = OPEN;
-                    out[end - 1] = CLOSE;
+                Some(end) if end <= to => {
+                    out[i - from] = OPEN;
+                    out[end - 1 - from] = CLOSE;
                     i = end;
                 }
-                None => i += 1,
+                _ => i += 1,
             },
             b'a'..=b'z' | b'A'..=b'Z' => {
                 let end = word_end(b, i);
                 if separated(b, i) && !is_reserved(&b[i..end]) {
-                    out[i] = NAME;
+                    out[i - from] = NAME;
                 }
                 i = end;
             }
@@ -84,10 +134,7 @@ pub(crate) fn mark(text: &str) -> String {
             _ => i += 1,
         }
     }
-    // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
-    String::from_utf8(out).unwrap_or_else(|_| text.to_string())
 }
-
 /// The copy of `text` pest reads without the pre-pass: only the mark characters the text
 /// itself holds are made neutral, so that pest sees the same characters as with the marks
 /// wherever there are none. (Tests compare the two parses: see `ParseOptions::lexical_marks`.)

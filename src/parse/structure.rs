@@ -11,48 +11,108 @@ use crate::ast::{
     StmtKind,
 };
 use crate::diag::Diagnostics;
+use crate::parse::ParseOptions;
 use crate::source::Span;
 
-pub(crate) fn check(file: &File, diags: &mut Diagnostics) {
-    let mut c = Checker {
-        diags,
-        file: file.span.source,
+pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions) {
+    let source = file.span.source;
+    let threads = if file.span.len() >= options.parallel_min_bytes {
+        options.threads
+    } else {
+        1
     };
     for m in &file.modules {
         let scope = Scope("module", &m.name.node);
+        // The checks inside each item, on several threads for a large module: for each item
+        // that has any, its diagnostics (in the order one thread finds them).
+        let inside = if threads > 1 && m.items.len() > 1 {
+            items_in_parallel(&m.items, source, threads)
+        } else {
+            Vec::new()
+        };
+        let mut inside = inside.into_iter().peekable();
         // (Sized for every item up front: growing the map would hash every name again.)
         let mut names = Names::with_capacity(m.items.len());
-        for item in &m.items {
-            match item {
-                ModuleItem::Record(r) => {
-                    names.add(&mut c, &r.name, scope);
-                    let rscope = Scope("record", &r.name.node);
-                    let mut fields = Names::default();
-                    for f in &r.fields {
-                        fields.add(&mut c, &f.name, rscope);
-                        c.ident(&f.ty);
-                        c.ident(&f.name);
-                        c.exprs(&f.dims);
-                    }
-                    c.ident(&r.name);
+        for (i, item) in m.items.iter().enumerate() {
+            // The module-level duplicate first, then what is inside the item, as one thread
+            // reports them.
+            if let Some(name) = item_name(item) {
+                let mut c = Checker {
+                    diags: &mut *diags,
+                    file: source,
+                };
+                names.add(&mut c, name, scope);
+            }
+            if threads > 1 && m.items.len() > 1 {
+                if let Some((_, d)) = inside.next_if(|(at, _)| *at == i) {
+                    diags.extend(d);
                 }
-                ModuleItem::Alias(a) => {
-                    names.add(&mut c, &a.name, scope);
-                    c.ident(&a.name);
-                    c.ident(&a.base);
-                }
-                ModuleItem::Data(d) => {
-                    names.add(&mut c, &d.name, scope);
-                    c.data(d);
-                }
-                ModuleItem::Routine(r) => {
-                    names.add(&mut c, &r.name, scope);
-                    c.routine(r);
-                }
-                ModuleItem::Placeholder(p) => c.placeholder(p.node, p.span),
+            } else {
+                let mut c = Checker {
+                    diags: &mut *diags,
+                    file: source,
+                };
+                c.item(item);
             }
         }
     }
+}
+
+/// The name an item declares in its module's scope.
+fn item_name(item: &ModuleItem) -> Option<&Ident> {
+    match item {
+        ModuleItem::Record(r) => Some(&r.name),
+        ModuleItem::Alias(a) => Some(&a.name),
+        ModuleItem::Data(d) => Some(&d.name),
+        ModuleItem::Routine(r) => Some(&r.name),
+        ModuleItem::Placeholder(_) => None,
+    }
+}
+
+/// The checks inside `items`, cut into `threads` runs checked at the same time: the index and
+/// diagnostics of every item that has any, in item order.
+fn items_in_parallel(
+    items: &[ModuleItem],
+    source: crate::source::SourceId,
+    threads: usize,
+) -> Vec<(usize, Diagnostics)> {
+    let run = |from: usize, items: &[ModuleItem]| {
+        let mut found = Vec::new();
+        for (k, item) in items.iter().enumerate() {
+            let mut d = Diagnostics::new();
+            Checker {
+                diags: &mut d,
+                file: source,
+            }
+            .item(item);
+            if !d.is_empty() {
+                found.push((from + k, d));
+            }
+        }
+        found
+    };
+    let per = items.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let mut spawned = Vec::new();
+        let mut here = Vec::new();
+        for (n, chunk) in items.chunks(per).enumerate().skip(1) {
+            let from = n * per;
+            match std::thread::Builder::new().spawn_scoped(scope, move || run(from, chunk)) {
+                Ok(h) => spawned.push((from, chunk, h)),
+                Err(_) => here.push((from, chunk)),
+            }
+        }
+        let mut out = run(0, &items[..per.min(items.len())]);
+        for (from, chunk, h) in spawned {
+            // (A checker thread that failed is run again here.)
+            out.extend(h.join().unwrap_or_else(|_| run(from, chunk)));
+        }
+        for (from, chunk) in here {
+            out.extend(run(from, chunk));
+        }
+        out.sort_by_key(|(i, _)| *i);
+        out
+    })
 }
 
 struct Checker<'d> {
@@ -128,6 +188,30 @@ impl<'a> Names<'a> {
 }
 
 impl Checker<'_> {
+    /// The checks inside one module item (its own name's duplicate is the module's business).
+    fn item(&mut self, item: &ModuleItem) {
+        match item {
+            ModuleItem::Record(r) => {
+                let rscope = Scope("record", &r.name.node);
+                let mut fields = Names::default();
+                for f in &r.fields {
+                    fields.add(self, &f.name, rscope);
+                    self.ident(&f.ty);
+                    self.ident(&f.name);
+                    self.exprs(&f.dims);
+                }
+                self.ident(&r.name);
+            }
+            ModuleItem::Alias(a) => {
+                self.ident(&a.name);
+                self.ident(&a.base);
+            }
+            ModuleItem::Data(d) => self.data(d),
+            ModuleItem::Routine(r) => self.routine(r),
+            ModuleItem::Placeholder(p) => self.placeholder(p.node, p.span),
+        }
+    }
+
     fn push(&mut self, kind: ParseErrorKind) {
         self.diags.push(ParseError::new(self.file, kind));
     }
