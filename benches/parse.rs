@@ -33,7 +33,7 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 let mut diags = Diagnostics::new();
                 let file = parse::parse_file_with(SourceId(0), &text, &mut diags, &options);
-                parse::check_structure(&file, &mut diags);
+                parse::check_structure_with(&file, &mut diags, &options);
                 assert!(diags.is_empty(), "the generated program must be clean");
                 file
             })
