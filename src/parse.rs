@@ -6,6 +6,12 @@
 //! checks that need the whole tree but no types (duplicate names, placeholders).
 //!
 //! pest is used only here: `grammar/*.pest` at the crate root, bound in `parse/grammar.rs`.
+//!
+//! Speed (see [`ParseOptions`]): pest reads a copy of the text in which a lexical pre-pass
+//! has marked names and literal aggregates (`parse/marks.rs`); a large module body is cut at
+//! routine starts (`parse/split.rs`) and its pieces are built on several threads
+//! (`parse/build/parallel.rs`). Neither changes the AST or the diagnostics; tests compare
+//! both ways on every file of the repository and on mutated programs.
 
 use crate::ast;
 use crate::diag::Diagnostics;
