@@ -154,6 +154,49 @@ fn acceptance_joints_from_the_trace() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A tool change moves the TCP of the trace by the tools' difference (416 mm here) without
+/// moving the robot: the speed column must not show that as one cycle at 100 m/s.
+#[test]
+fn tool_changes_do_not_show_as_tcp_speed() {
+    let dir = scratch("toolchange");
+    let trace = dir.join("acceptance.csv");
+    let (code, stdout, stderr) = rapidvc(
+        &motion_dir(),
+        &["run", "acceptance.mod", "--trace", trace.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let (header, rows) = read_trace(&trace);
+    let (x, speed, line) = (
+        col(&header, "x"),
+        col(&header, "speed_mm_s"),
+        col(&header, "line"),
+    );
+    // The first cycle of `MoveAbsJ jpos10, …, tool0` (line 25), right after p20 with
+    // tFroniusCMT: the TCP jumps, the robot starts from rest.
+    let first = rows
+        .iter()
+        .position(|r| r[line] == "25")
+        .expect("rows of line 25");
+    let before = &rows[first - 1];
+    let at = &rows[first];
+    let jump: f64 = (0..3)
+        .map(|k| (num(at, x + k) - num(before, x + k)).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    assert!(
+        jump > 300.0,
+        "the TCP moves with the tool change ({jump} mm)"
+    );
+    assert!(
+        num(at, speed) < 50.0,
+        "speed at the tool change {} mm/s",
+        num(at, speed)
+    );
+    let top = rows.iter().map(|r| num(r, speed)).fold(0.0, f64::max);
+    assert!(top < 5000.0, "top TCP speed {top} mm/s");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn movel_keeps_the_tcp_on_the_line_at_the_programmed_speed() {
     let dir = scratch("movel");

@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use nalgebra::Translation3;
 
-use crate::robot::{JointsDeg, Robot, ToolData};
+use crate::robot::{JointsDeg, Pose, Robot, ToolData};
 
 use super::clock::RobotTime;
 use super::correction::{PathCorrection, PathPoint, Track};
@@ -43,6 +43,9 @@ struct Out {
     sample: Sample,
     /// The last sample of a stop point.
     at_stop_point: bool,
+    /// The first sample of a segment or of its corner path (its tool may differ from the
+    /// previous sample's).
+    first: bool,
 }
 
 /// The executing half of the motion core (see the module docs).
@@ -270,6 +273,8 @@ impl Executor {
     /// One motion cycle at robot time `now`.
     pub fn tick(&mut self, now: RobotTime) -> Setpoint {
         let prev = self.setpoint;
+        // Whether this cycle's TCP may belong to another tool than the previous one's.
+        let mut fresh = false;
         let (target, at_stop_point, instr, tool_tcp) = if self.halted {
             (None, true, None, None)
         } else if let Some(ext) = self.external.as_mut() {
@@ -289,6 +294,7 @@ impl Executor {
         } else {
             match self.next_sample() {
                 Some(out) => {
+                    fresh = out.first;
                     let mut instr = self.active_instr().or(self.last_done);
                     match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
@@ -315,8 +321,7 @@ impl Executor {
                 Ok(()) => {
                     sp.joints = q;
                     sp.tcp = tcp;
-                    sp.speed =
-                        (tcp.translation.vector - prev.tcp.translation.vector).norm() / self.dt;
+                    sp.speed = self.tcp_speed(&prev, &q, &tcp, fresh || instr != prev.instr);
                 }
                 Err(error) => self.fault(instr, error),
             }
@@ -327,6 +332,26 @@ impl Executor {
         }
         self.setpoint = sp;
         sp
+    }
+
+    /// TCP speed (mm/s) from the previous setpoint to the TCP `tcp` at axes `q`. When `fresh`
+    /// (a new segment, corner or instruction starts) and the tool is not the previous cycle's,
+    /// the previous position is taken with this cycle's tool: a tool change moves the TCP
+    /// without moving the robot.
+    fn tcp_speed(&self, prev: &Setpoint, q: &JointsDeg, tcp: &Pose, fresh: bool) -> f64 {
+        let mut from = prev.tcp.translation.vector;
+        if fresh {
+            let tool = self.robot.fk(q).inverse() * tcp;
+            let prev_flange = self.robot.fk(&prev.joints);
+            let prev_tool = prev_flange.inverse() * prev.tcp;
+            let moved = (tool.translation.vector - prev_tool.translation.vector).norm();
+            let same_tool_from = (prev_flange * tool).translation.vector;
+            // (1 µm: the same tool, up to rounding; keep the previous TCP exactly then.)
+            if moved > 1e-3 && same_tool_from.iter().all(|c| c.is_finite()) {
+                from = same_tool_from;
+            }
+        }
+        (tcp.translation.vector - from).norm() / self.dt
     }
 
     /// Per-cycle supervision: finite values inside the axis ranges, axis speeds within limits.
@@ -477,10 +502,12 @@ impl Executor {
             };
             if act.in_corner {
                 if let Some(s) = act.seg.corner_samples.get(act.idx) {
+                    let first = act.idx == 0;
                     act.idx += 1;
                     return Some(Out {
                         sample: *s,
                         at_stop_point: false,
+                        first,
                     });
                 }
                 act.in_corner = false;
@@ -506,6 +533,7 @@ impl Executor {
                 continue;
             }
             if let Some(s) = act.seg.samples.get(act.idx).copied() {
+                let first = act.idx == 0;
                 act.idx += 1;
                 let last = act.idx >= act.seg.samples.len();
                 let fine = act.seg.fine;
@@ -515,6 +543,7 @@ impl Executor {
                 return Some(Out {
                     sample: s,
                     at_stop_point: last && fine,
+                    first,
                 });
             }
             self.finish_active();
