@@ -20,6 +20,7 @@ use crate::source::SourceId;
 mod build;
 pub mod error;
 mod grammar;
+pub(crate) mod jobs;
 mod marks;
 mod names;
 mod pratt;

@@ -4,7 +4,6 @@
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use miette::{GraphicalReportHandler, GraphicalTheme};
 
@@ -112,39 +111,9 @@ fn parse_all(map: &SourceMap, ids: &[SourceId]) -> Vec<(ast::File, Diagnostics)>
         parse::check_structure(&file, &mut d);
         (file, d)
     };
-    let threads = parse::ParseOptions::default().threads.min(ids.len());
-    if threads < 2 {
-        return ids.iter().map(|&id| one(id)).collect();
-    }
-    let next = AtomicUsize::new(0);
-    // Each worker takes the next file until none is left, and keeps what it built.
-    let work = || {
-        let mut done = Vec::new();
-        loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(&id) = ids.get(i) else { break };
-            done.push((i, one(id)));
-        }
-        done
-    };
-    let mut results: Vec<Option<(ast::File, Diagnostics)>> = ids.iter().map(|_| None).collect();
-    let mut store = |done: Vec<(usize, (ast::File, Diagnostics))>| {
-        for (i, r) in done {
-            results[i] = Some(r);
-        }
-    };
-    std::thread::scope(|scope| {
-        let workers: Vec<_> = (1..threads)
-            .filter_map(|_| std::thread::Builder::new().spawn_scoped(scope, work).ok())
-            .collect();
-        store(work());
-        for w in workers {
-            if let Ok(done) = w.join() {
-                store(done);
-            }
-        }
-    });
-    // (A file no worker delivered is parsed here.)
+    let threads = parse::ParseOptions::default().threads;
+    let (_, results) = parse::jobs::run(threads, ids.to_vec(), one, || ());
+    // (A file no thread delivered is parsed here.)
     ids.iter()
         .zip(results)
         .map(|(&id, r)| r.unwrap_or_else(|| one(id)))

@@ -33,6 +33,7 @@
 //! A differential test (every construct, mutated programs, edge cases) compares the trees
 //! and diagnostics with and without the pre-pass.
 
+use super::jobs;
 use super::recover::RESERVED;
 
 /// Replaces the first letter of a name that is not a reserved word.
@@ -73,27 +74,15 @@ pub(crate) fn mark_alongside<R>(
         }
     }
     cuts.push(b.len());
-    let r = std::thread::scope(|scope| {
-        let mut rest: &mut [u8] = &mut out;
-        let mut own = None;
-        for w in cuts.windows(2) {
-            let (run, tail) = std::mem::take(&mut rest).split_at_mut(w[1] - w[0]);
-            rest = tail;
-            let from = w[0];
-            if from == 0 {
-                own = Some(run);
-            } else {
-                // (Without a thread, the run stays unmarked: slower, not different.)
-                let _ =
-                    std::thread::Builder::new().spawn_scoped(scope, move || mark_run(b, run, from));
-            }
-        }
-        let r = first();
-        if let Some(run) = own {
-            mark_run(b, run, 0);
-        }
-        r
-    });
+    let mut runs = Vec::with_capacity(cuts.len());
+    let mut rest: &mut [u8] = &mut out;
+    for w in cuts.windows(2) {
+        let (run, tail) = std::mem::take(&mut rest).split_at_mut(w[1] - w[0]);
+        rest = tail;
+        runs.push((w[0], run));
+    }
+    // (A run left unmarked is read by the plain rules: slower, not different.)
+    let (r, _) = jobs::run(threads, runs, |(from, run)| mark_run(b, run, from), first);
     // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
     let marked = String::from_utf8(out).unwrap_or_else(|_| text.to_string());
     (r, marked)

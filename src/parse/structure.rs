@@ -11,7 +11,7 @@ use crate::ast::{
     StmtKind,
 };
 use crate::diag::Diagnostics;
-use crate::parse::ParseOptions;
+use crate::parse::{ParseOptions, jobs};
 use crate::source::Span;
 
 pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions) {
@@ -25,7 +25,8 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
         let scope = Scope("module", &m.name.node);
         // The checks inside each item, on several threads for a large module: for each item
         // that has any, its diagnostics (in the order one thread finds them).
-        let inside = if threads > 1 && m.items.len() > 1 {
+        let parallel = threads > 1 && m.items.len() > 1;
+        let inside = if parallel {
             items_in_parallel(&m.items, source, threads)
         } else {
             Vec::new()
@@ -43,7 +44,7 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
                 };
                 names.add(&mut c, name, scope);
             }
-            if threads > 1 && m.items.len() > 1 {
+            if parallel {
                 if let Some((_, d)) = inside.next_if(|(at, _)| *at == i) {
                     diags.extend(d);
                 }
@@ -92,27 +93,18 @@ fn items_in_parallel(
         found
     };
     let per = items.len().div_ceil(threads);
-    std::thread::scope(|scope| {
-        let mut spawned = Vec::new();
-        let mut here = Vec::new();
-        for (n, chunk) in items.chunks(per).enumerate().skip(1) {
-            let from = n * per;
-            match std::thread::Builder::new().spawn_scoped(scope, move || run(from, chunk)) {
-                Ok(h) => spawned.push((from, chunk, h)),
-                Err(_) => here.push((from, chunk)),
-            }
-        }
-        let mut out = run(0, &items[..per.min(items.len())]);
-        for (from, chunk, h) in spawned {
-            // (A checker thread that failed is run again here.)
-            out.extend(h.join().unwrap_or_else(|_| run(from, chunk)));
-        }
-        for (from, chunk) in here {
-            out.extend(run(from, chunk));
-        }
-        out.sort_by_key(|(i, _)| *i);
-        out
-    })
+    let chunks: Vec<(usize, &[ModuleItem])> = items
+        .chunks(per)
+        .enumerate()
+        .map(|(n, c)| (n * per, c))
+        .collect();
+    let (_, found) = jobs::run(threads, chunks.clone(), |(from, c)| run(from, c), || ());
+    chunks
+        .into_iter()
+        .zip(found)
+        // (A checker run that failed is run again here.)
+        .flat_map(|((from, c), f)| f.unwrap_or_else(|| run(from, c)))
+        .collect()
 }
 
 struct Checker<'d> {

@@ -14,12 +14,8 @@ use super::{Builder, ModuleUnderConstruction};
 use crate::ast::{Module, ModuleItem};
 use crate::diag::Diagnostics;
 use crate::parse::grammar::{RapidParser, Rule};
-use crate::parse::{ParseOptions, split};
+use crate::parse::{ParseOptions, jobs, split};
 use crate::source::{SourceId, Span, Spanned};
-
-/// Stack of a piece's thread: like the main thread's, so the nesting bound of
-/// [`crate::parse::MAX_NESTING`] holds there too (only the pages used are committed).
-const PIECE_STACK: usize = 8 << 20;
 
 /// The items built from one piece and the span they cover.
 type Piece = (Vec<ModuleItem>, Span);
@@ -62,33 +58,17 @@ impl<'t> Builder<'t, '_> {
             return None;
         }
         let (file, text, marked) = (self.file, self.text, self.marked);
-        let pieces: Vec<Option<Piece>> = std::thread::scope(|scope| {
-            let mut handles = Vec::new();
-            let mut inline = Vec::new();
-            for w in cuts.windows(2).skip(1) {
-                let (a, b) = (w[0], w[1]);
-                let spawned = std::thread::Builder::new()
-                    .name("rapidvc-parse".into())
-                    .stack_size(PIECE_STACK)
-                    .spawn_scoped(scope, move || piece(file, text, marked, a, b));
-                match spawned {
-                    Ok(h) => handles.push(h),
-                    // No thread to be had: this piece is built here, after the first.
-                    Err(_) => inline.push((a, b)),
-                }
-            }
-            let mut out = vec![piece(file, text, marked, cuts[0], cuts[1])];
-            out.extend(handles.into_iter().map(|h| h.join().ok().flatten()));
-            out.extend(
-                inline
-                    .into_iter()
-                    .map(|(a, b)| piece(file, text, marked, a, b)),
-            );
-            out
-        });
-        // (Pieces built inline come last in `pieces` but not in the text: order by span.)
-        let mut pieces = pieces.into_iter().collect::<Option<Vec<Piece>>>()?;
-        pieces.sort_by_key(|(_, span)| span.start);
+        let runs: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
+        let (_, pieces) = jobs::run(
+            threads,
+            runs,
+            |(a, b)| piece(file, text, marked, a, b),
+            || (),
+        );
+        let pieces = pieces
+            .into_iter()
+            .map(Option::flatten)
+            .collect::<Option<Vec<Piece>>>()?;
         for (items, span) in pieces {
             m.module.items.extend(items);
             m.module.span = m.module.span.merge(span);
