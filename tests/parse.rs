@@ -414,6 +414,40 @@ mod properties {
     }
 }
 
+/// The AST dump and rendered diagnostics of `text` parsed and checked with `options`.
+fn outcome(text: &str, options: &parse::ParseOptions) -> (String, String) {
+    let mut map = SourceMap::new();
+    let id = map.add("same.mod", text);
+    let mut diags = Diagnostics::new();
+    let file = parse::parse_file_with(id, text, &mut diags, options);
+    parse::check_structure_with(&file, &mut diags, options);
+    (file.dump(), diags.render_plain(&map, 80))
+}
+
+/// Every RAPID file of the repository's programs, stdlib and test inputs: name and text.
+fn repository_texts() -> Vec<(String, String)> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let dirs = [
+        "programs",
+        "stdlib",
+        "tests/parse/ok",
+        "tests/parse/err",
+        "tests/run",
+        "tests/rapid",
+    ];
+    let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
+        .expect("RAPID files in the repository");
+    assert!(files.len() > 20);
+    files
+        .into_iter()
+        .map(|path| {
+            let mut map = SourceMap::new();
+            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
+            (path.display().to_string(), map.get(id).text.to_string())
+        })
+        .collect()
+}
+
 /// A module body cut into pieces parsed (and marked, and structure-checked) on several
 /// threads gives the same AST and the same diagnostics, in the same order, as one thread,
 /// for clean and broken programs alike.
@@ -421,16 +455,6 @@ mod parallel {
     use super::*;
     use proptest::prelude::*;
     use rapidvc::parse::ParseOptions;
-
-    /// The AST dump and rendered diagnostics of `text` parsed with `options`.
-    fn outcome(text: &str, options: &ParseOptions) -> (String, String) {
-        let mut map = SourceMap::new();
-        let id = map.add("cut.mod", text);
-        let mut diags = Diagnostics::new();
-        let file = parse::parse_file_with(id, text, &mut diags, options);
-        parse::check_structure_with(&file, &mut diags, options);
-        (file.dump(), diags.render_plain(&map, 80))
-    }
 
     /// Every routine start is a cut, on three threads.
     fn cut_everywhere() -> ParseOptions {
@@ -471,21 +495,8 @@ mod parallel {
 
     #[test]
     fn every_program_and_test_input() {
-        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-        let dirs = [
-            "programs",
-            "stdlib",
-            "tests/parse/ok",
-            "tests/parse/err",
-            "tests/run",
-        ];
-        let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
-            .expect("RAPID files in the repository");
-        assert!(files.len() > 20);
-        for path in files {
-            let mut map = SourceMap::new();
-            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
-            assert_same(&path.display().to_string(), &map.get(id).text);
+        for (name, text) in repository_texts() {
+            assert_same(&name, &text);
         }
     }
 
@@ -549,21 +560,12 @@ mod lexical_marks {
     use proptest::prelude::*;
     use rapidvc::parse::ParseOptions;
 
-    fn outcome(text: &str, lexical_marks: bool) -> (String, String) {
-        let mut map = SourceMap::new();
-        let id = map.add("marks.mod", text);
-        let mut diags = Diagnostics::new();
-        let options = ParseOptions {
+    fn assert_same(name: &str, text: &str) -> Result<(), TestCaseError> {
+        let marks = |lexical_marks| ParseOptions {
             lexical_marks,
             ..ParseOptions::single_thread()
         };
-        let file = parse::parse_file_with(id, text, &mut diags, &options);
-        parse::check_structure(&file, &mut diags);
-        (file.dump(), diags.render_plain(&map, 80))
-    }
-
-    fn assert_same(name: &str, text: &str) -> Result<(), TestCaseError> {
-        let (with, without) = (outcome(text, true), outcome(text, false));
+        let (with, without) = (outcome(text, &marks(true)), outcome(text, &marks(false)));
         prop_assert!(
             with == without,
             "{name}: the pre-pass changed the result\n{}\n--- without ---\n{}",
@@ -575,21 +577,8 @@ mod lexical_marks {
 
     #[test]
     fn every_program_and_test_input() {
-        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-        let dirs = [
-            "programs",
-            "stdlib",
-            "tests/parse/ok",
-            "tests/parse/err",
-            "tests/run",
-            "tests/rapid",
-        ];
-        let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
-            .expect("RAPID files in the repository");
-        for path in files {
-            let mut map = SourceMap::new();
-            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
-            assert_same(&path.display().to_string(), &map.get(id).text).expect("same result");
+        for (name, text) in repository_texts() {
+            assert_same(&name, &text).expect("same result");
         }
         assert_same("generated", &gen_program::program(200 << 10)).expect("same result");
     }

@@ -67,6 +67,20 @@ fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     (header, rows)
 }
 
+/// Run `program` of `tests/run/motion` with `--trace` in the scratch directory `name`; it must
+/// succeed. Returns the directory and the trace's header and rows.
+fn traced(name: &str, program: &str) -> (PathBuf, Vec<String>, Vec<Vec<String>>) {
+    let dir = scratch(name);
+    let trace = dir.join(format!("{name}.csv"));
+    let (code, stdout, stderr) = rapidvc(
+        &motion_dir(),
+        &["run", program, "--trace", trace.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let (header, rows) = read_trace(&trace);
+    (dir, header, rows)
+}
+
 fn col(header: &[String], name: &str) -> usize {
     header
         .iter()
@@ -126,14 +140,7 @@ const P20_JOINTS: [f64; 6] = [83.498, 0.077, -0.340, 0.103, 39.066, -0.136];
 
 #[test]
 fn acceptance_joints_from_the_trace() {
-    let dir = scratch("acceptance");
-    let trace = dir.join("acceptance.csv");
-    let (code, stdout, stderr) = rapidvc(
-        &motion_dir(),
-        &["run", "acceptance.mod", "--trace", trace.to_str().unwrap()],
-    );
-    assert_eq!(code, 0, "{stdout}{stderr}");
-    let (header, rows) = read_trace(&trace);
+    let (dir, header, rows) = traced("acceptance", "acceptance.mod");
     let (instr, line) = (col(&header, "instr"), col(&header, "line"));
     // The last row of the MoveJ p20 (line 20) and the last row of the run (MoveJ p30).
     let end_p20 = rows
@@ -158,14 +165,7 @@ fn acceptance_joints_from_the_trace() {
 /// moving the robot: the speed column must not show that as one cycle at 100 m/s.
 #[test]
 fn tool_changes_do_not_show_as_tcp_speed() {
-    let dir = scratch("toolchange");
-    let trace = dir.join("acceptance.csv");
-    let (code, stdout, stderr) = rapidvc(
-        &motion_dir(),
-        &["run", "acceptance.mod", "--trace", trace.to_str().unwrap()],
-    );
-    assert_eq!(code, 0, "{stdout}{stderr}");
-    let (header, rows) = read_trace(&trace);
+    let (dir, header, rows) = traced("toolchange", "acceptance.mod");
     let (x, speed, line) = (
         col(&header, "x"),
         col(&header, "speed_mm_s"),
@@ -199,14 +199,7 @@ fn tool_changes_do_not_show_as_tcp_speed() {
 
 #[test]
 fn movel_keeps_the_tcp_on_the_line_at_the_programmed_speed() {
-    let dir = scratch("movel");
-    let trace = dir.join("moves.csv");
-    let (code, _, stderr) = rapidvc(
-        &motion_dir(),
-        &["run", "moves.mod", "--trace", trace.to_str().unwrap()],
-    );
-    assert_eq!(code, 0, "{stderr}");
-    let (header, rows) = read_trace(&trace);
+    let (dir, header, rows) = traced("movel", "moves.mod");
     let (x, speed, instr, line) = (
         col(&header, "x"),
         col(&header, "speed_mm_s"),
