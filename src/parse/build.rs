@@ -44,16 +44,7 @@ pub(crate) fn parse(
     options: &ParseOptions,
 ) -> ast::File {
     let whole = Span::new(file, 0, text.len());
-    let mut b = Builder {
-        file,
-        text,
-        marked: text,
-        diags,
-        base: 0,
-        errors: 0,
-        stopped: false,
-        scratch: Vec::new(),
-    };
+    let mut b = Builder::new(file, text, text, diags);
     let empty = ast::File {
         modules: Vec::new(),
         span: whole,
@@ -89,6 +80,27 @@ pub(crate) fn parse(
     let mut out = empty;
     b.file_pieces(&mut out, options);
     out
+}
+
+impl<'t, 'd> Builder<'t, 'd> {
+    /// A builder for `text` (pest reads `marked`, see `marks.rs`) that reports into `diags`.
+    pub(crate) fn new(
+        file: SourceId,
+        text: &'t str,
+        marked: &'t str,
+        diags: &'d mut Diagnostics,
+    ) -> Self {
+        Builder {
+            file,
+            text,
+            marked,
+            diags,
+            base: 0,
+            errors: 0,
+            stopped: false,
+            scratch: Vec::new(),
+        }
+    }
 }
 
 impl<'t> Builder<'t, '_> {

@@ -82,16 +82,7 @@ impl<'t> Builder<'t, '_> {
 /// parses it, see `marks.rs`.)
 fn piece(file: SourceId, text: &str, marked: &str, from: usize, to: usize) -> Option<Piece> {
     let mut diags = Diagnostics::new();
-    let mut b = Builder {
-        file,
-        text,
-        marked,
-        diags: &mut diags,
-        base: from,
-        errors: 0,
-        stopped: false,
-        scratch: Vec::new(),
-    };
+    let mut b = Builder::new(file, text, marked, &mut diags);
     let at = Span::new(file, from, from);
     let mut m = ModuleUnderConstruction {
         module: Module {
