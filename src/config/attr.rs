@@ -165,6 +165,22 @@ pub(super) fn warn_unknown(
     }
 }
 
+/// Report that the required attribute `name` is missing from `inst` in `section`.
+pub(super) fn missing_attr(
+    src: SourceId,
+    section: &str,
+    inst: &CfgInstance,
+    name: &str,
+    diags: &mut Diagnostics,
+) {
+    diags.push(ConfigError::MissingAttribute {
+        src,
+        span: inst.span,
+        name: name.to_string(),
+        section: section.to_string(),
+    });
+}
+
 /// The value of an attribute reader, noting a reported failure.
 pub(super) fn keep<T>(r: Result<Option<T>, ()>, failed: &mut bool) -> Option<T> {
     r.unwrap_or_else(|()| {

@@ -22,7 +22,7 @@ use crate::io::{IoError, MAX_GROUP_BITS, SignalDef, SignalKind};
 use crate::source::{SourceId, Span};
 
 use super::ConfigError;
-use super::attr::{keep, num_attr, text_attr, warn_unknown};
+use super::attr::{keep, missing_attr, num_attr, text_attr, warn_unknown};
 use super::cfg::{CfgFile, CfgInstance};
 
 /// The section that defines signals.
@@ -149,14 +149,8 @@ fn signal(
     diags: &mut Diagnostics,
 ) -> Option<EioSignal> {
     warn_unknown(src, section, inst, &[USED, IGNORED], diags);
-    let missing = |name: &str, diags: &mut Diagnostics| {
-        diags.push(ConfigError::MissingAttribute {
-            src,
-            span: inst.span,
-            name: name.to_string(),
-            section: section.to_string(),
-        });
-    };
+    let missing =
+        |name: &str, diags: &mut Diagnostics| missing_attr(src, section, inst, name, diags);
     let mut failed = false;
     let f = &mut failed;
     let name = keep(text_attr(src, inst, &["Name"], diags), f);

@@ -30,7 +30,9 @@ use crate::diag::{Diagnostics, RapidDiagnostic};
 use crate::source::{SourceId, Span};
 
 use super::ConfigError;
-use super::attr::{found_text, int_attr, keep, ranged_num_attr, text_attr, warn_unknown};
+use super::attr::{
+    found_text, int_attr, keep, missing_attr, ranged_num_attr, text_attr, warn_unknown,
+};
 use super::cfg::{CfgFile, CfgInstance, CfgValue};
 
 /// The section of External Motion Interface Data.
@@ -309,12 +311,7 @@ fn profile(
 
     let Some((name, name_span)) = name else {
         if !failed {
-            diags.push(ConfigError::MissingAttribute {
-                src,
-                span: inst.span,
-                name: "name".into(),
-                section: section.to_string(),
-            });
+            missing_attr(src, section, inst, "name", diags);
         }
         return None;
     };

@@ -32,7 +32,7 @@ use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span};
 
 use super::ConfigError;
-use super::attr::{int_attr, keep, text_attr, warn_unknown};
+use super::attr::{int_attr, keep, missing_attr, text_attr, warn_unknown};
 use super::cfg::{CfgFile, CfgInstance};
 
 /// The RobotWare 6 section of transmission protocols.
@@ -204,14 +204,8 @@ fn device(
     inst: &CfgInstance,
     diags: &mut Diagnostics,
 ) -> Option<SioDevice> {
-    let missing = |name: &str, diags: &mut Diagnostics| {
-        diags.push(ConfigError::MissingAttribute {
-            src,
-            span: inst.span,
-            name: name.to_string(),
-            section: section.to_string(),
-        });
-    };
+    let missing =
+        |name: &str, diags: &mut Diagnostics| missing_attr(src, section, inst, name, diags);
     let mut failed = false;
     let f = &mut failed;
     let name = keep(text_attr(src, inst, &["Name"], diags), f);
