@@ -44,6 +44,12 @@ fn ctx(signals: Arc<SignalTable>) -> DriverContext {
     }
 }
 
+/// A driver for `plan` started at time zero from `START`, with the plan's own source.
+fn start_at_zero(ctx: &DriverContext, plan: &rapidvc::egm::registry::RunPlan) -> EgmDriver {
+    let source = EgmSource::open(&plan.source).unwrap();
+    EgmDriver::start(Duration::ZERO, ctx, plan, source, &START).unwrap()
+}
+
 fn uc(device: &str, mode: EgmMode) -> SetupUc {
     SetupUc {
         mecunit: "ROB_1".into(),
@@ -200,14 +206,7 @@ mod builtin {
         };
         let plan = reg.run_joint(id, &args, ALL_J).unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         let run = drive(&mut driver, Duration::ZERO, 5000, false);
         assert_eq!(run.result, Ok(EgmEnd::Converged));
         // It reached the target, then came back.
@@ -241,14 +240,7 @@ mod builtin {
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         // EGMStop HOLD mid-run.
         let plan = reg.run_joint(id, &args, ALL_J).unwrap();
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         let mut q = START;
         for k in 0..125u32 {
             let t = driver.tick(TICK * k, &q);
@@ -263,14 +255,7 @@ mod builtin {
         reg.run_finished(id, true);
         // Program stop: ramps out over the profile's 0.5 s.
         let plan = reg.run_joint(id, &args, ALL_J).unwrap();
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         for k in 0..100u32 {
             driver.tick(TICK * k, &START);
         }
@@ -300,14 +285,7 @@ mod builtin {
             .run_joint(id, &RunArgs::new(StopMode::Hold), [false; 7])
             .unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         let t = driver.tick(Duration::ZERO, &START);
         assert_eq!(t.finished, Some(Ok(EgmEnd::NoMovement)));
         assert_eq!(t.joints_cmd, START);
@@ -324,14 +302,7 @@ mod builtin {
             .run_pose(id, &RunArgs::new(StopMode::Hold), [true; 6], None)
             .unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         let run = drive(&mut driver, Duration::ZERO, 1000, false);
         let err = run.result.unwrap_err();
         assert_eq!(err.event().number, 50050, "{err}");
@@ -715,14 +686,7 @@ mod udp {
             .run_joint(id, &RunArgs::new(StopMode::Hold), ALL_J)
             .unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let mut driver = EgmDriver::start(
-            Duration::ZERO,
-            &ctx,
-            &plan,
-            EgmSource::open(&plan.source).unwrap(),
-            &START,
-        )
-        .unwrap();
+        let mut driver = start_at_zero(&ctx, &plan);
         let run = drive(&mut driver, Duration::ZERO, 1000, false);
         let err = run.result.unwrap_err();
         assert!(matches!(err, EgmError::CommTimeout { .. }), "{err}");
