@@ -3,7 +3,7 @@
 //! It parses and runs RAPID programs against a kinematic virtual 6-axis robot and implements
 //! ABB's Externally Guided Motion (EGM) over the real wire protocol (protobuf over UDP).
 //!
-//! Phases and layers (see `../shared/reference/architecture.md`):
+//! Phases and layers (see `docs/architecture.md`):
 //! `source` → `parse` (pest, AST with spans) → `sema` (names, types, IR) → `interp`
 //! (tree-walking evaluation) → `controller` (composition root, the motion thread) over
 //! `motion` (sans-IO motion core), `robot` (kinematics, pure math) and `egm` (wire protocol).

@@ -377,7 +377,7 @@ fn t_fronius_cmt() -> ToolData {
 mod signals {
     use super::*;
 
-    /// robot.md §11: target (150, 1320, 900) with p20's orientation and tFroniusCMT.
+    /// docs/robot.md, "Acceptance facts": target (150, 1320, 900) with p20's orientation and tFroniusCMT.
     const EXPECTED: Joints = [83.50, 0.10, 16.82, 0.17, 21.88, -0.22];
 
     /// `MoveJ p30, v1000, fine, tool0`.

@@ -1,8 +1,9 @@
 //! Integration tests of EGM position guidance geometry: the manual's examples through the full
 //! pipeline (signals → sensor pose → frames → TCP → IK nearest), frame types, selection,
-//! `\Offset`, convergence, supervision and speed references (robot.md §11, egm-rapid.md §7, §9).
+//! `\Offset`, convergence, supervision and speed references (docs/robot.md, "Acceptance
+//! facts"; docs/egm.md, "Frames in pose mode", "Signal sources").
 
-// Expected values are quoted digit for digit from robot.md and the manual.
+// Expected values are quoted digit for digit from docs/robot.md and the manual.
 #![allow(clippy::approx_constant)]
 
 // The one line to change when the module moves under `egm` (`rapidvc::egm::guidance`).
@@ -19,7 +20,7 @@ use rapidvc::robot::{
     ConfData, JointsDeg, KinError, LoadData, Pose, Robot, SingularityKind, ToolData, WobjData,
 };
 
-/// Joint tolerance of robot.md §11.
+/// Joint tolerance of docs/robot.md, "Acceptance facts".
 const JOINT_TOL: f64 = 0.01;
 /// Position tolerance (mm).
 const POS_TOL: f64 = 0.1;
@@ -138,7 +139,7 @@ fn set_xyz(table: &SignalTable, x: f64, y: f64, z: f64) {
 mod manual_signal_example {
     use super::*;
 
-    /// robot.md §11: EGM target (150, 1320, 900) with p20's orientation and tFroniusCMT.
+    /// docs/robot.md, "Acceptance facts": EGM target (150, 1320, 900) with p20's orientation and tFroniusCMT.
     const EXPECTED: JointsDeg = [83.50, 0.10, 16.82, 0.17, 21.88, -0.22];
 
     #[test]
@@ -314,7 +315,7 @@ mod tool_frame {
         let r = robot();
         let g = PoseGuidance::new(&r, &udpuc_setup(), &JPOS10).unwrap();
         let start_tcp = tcp(&r, &JPOS10);
-        // robot.md §11: TCP [1321.0, −0.1, 1128.4], torch pointing straight down.
+        // docs/robot.md, "Acceptance facts": TCP [1321.0, −0.1, 1128.4], torch pointing straight down.
         assert_pos(&start_tcp, [1321.0, -0.1, 1128.4], POS_TOL);
         assert_pos(g.sensor_frame(), [1321.0, -0.1, 1128.4], POS_TOL);
         assert!(g.sensor_frame().rotation.angle_to(&start_tcp.rotation) < 1e-12);

@@ -1,5 +1,5 @@
 //! Clock-driven tests of the motion core on the default robot (IRB 2600-12/1.85): acceptance
-//! facts of robot.md §11, path accuracy of MoveL/MoveC, axis-speed limits, zones, errors before
+//! facts of docs/robot.md, "Acceptance facts", path accuracy of MoveL/MoveC, axis-speed limits, zones, errors before
 //! motion, and byte-identical virtual-time traces. No sleeping: time is advanced by hand.
 
 mod support {
@@ -642,7 +642,7 @@ mod errors {
             }
         ));
         assert_eq!(e.event().map(|e| e.0), Some(50027));
-        // p30 evaluated with the torch has no solution in conf [0,0,-1,0] (robot.md §11 pitfall).
+        // p30 evaluated with the torch has no solution in conf [0,0,-1,0] (docs/robot.md, "Acceptance facts": the pitfall).
         let e = rejected(&mut core, move_j(2, p30(), 1000.0, 0.0, t_fronius()));
         assert_eq!(e.rapid_error_name(), Some("ERR_ROBLIMIT"));
     }

@@ -1,7 +1,7 @@
-//! Integration tests of the virtual robot: the acceptance facts of robot.md §11, FK/IK round
+//! Integration tests of the virtual robot: the acceptance facts of docs/robot.md, "Acceptance facts", FK/IK round
 //! trips on every model, confdata and error cases.
 
-// Expected values are quoted digit for digit from robot.md (0.707107 is not FRAC_1_SQRT_2).
+// Expected values are quoted digit for digit from docs/robot.md (0.707107 is not FRAC_1_SQRT_2).
 #![allow(clippy::approx_constant)]
 
 use rapidvc::robot::command::RobTarget;
@@ -11,7 +11,7 @@ use rapidvc::robot::{
     default_model, flange_target, model_by_name, models,
 };
 
-/// Joint tolerance of robot.md §11 (the expected values are rounded to 0.001°).
+/// Joint tolerance of docs/robot.md, "Acceptance facts" (the expected values are rounded to 0.001°).
 const JOINT_TOL: f64 = 0.01;
 /// Position tolerance (mm).
 const POS_TOL: f64 = 0.1;
@@ -80,7 +80,7 @@ fn flange_for(target: &RobTarget, tool: &ToolData) -> Pose {
 }
 
 mod acceptance {
-    //! robot.md §11 on the default IRB 2600-12/1.85.
+    //! docs/robot.md, "Acceptance facts", on the default IRB 2600-12/1.85.
     use super::*;
 
     #[test]
@@ -343,7 +343,7 @@ mod models_table {
 }
 
 mod confdata {
-    //! robot.md §5 through the robot: quarter revolutions and the cfx table.
+    //! docs/robot.md, "Configuration", through the robot: quarter revolutions and the cfx table.
     use super::*;
 
     #[test]

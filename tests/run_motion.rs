@@ -135,7 +135,7 @@ fn golden_motion_runs() {
     });
 }
 
-/// robot.md §11: MoveJ p20 with tFroniusCMT and MoveJ p30 with tool0 end at the same joints.
+/// docs/robot.md, "Acceptance facts": MoveJ p20 with tFroniusCMT and MoveJ p30 with tool0 end at the same joints.
 const P20_JOINTS: [f64; 6] = [83.498, 0.077, -0.340, 0.103, 39.066, -0.136];
 
 #[test]

@@ -1,6 +1,6 @@
 ! rapidvc: the example of section 9.3.6.3 of the EGM manual ("Using EGM Path Correction with
-! different protocol types"), transcribed as printed. Repaired (shared/reference/egm-rapid.md
-! section 11.3): the "]" missing at the end of tEGM and tLaser, the OCR'd name "eqmId1"
+! different protocol types"), transcribed as printed. Repaired (OCR and layout
+! damage): the "]" missing at the end of tEGM and tLaser, the OCR'd name "eqmId1"
 ! (egmId1), "\SampleRate:=50" in EGMActMove (48: the rate is a multiple of 24 ms, as in the
 ! RobotWare 7 edition of this example), "\Wobj" written "\WObj" like everywhere else, and
 ! the device names "Optsim"/"wglsim" in two comments ("OptSim"/"wg1sim", as in the code).

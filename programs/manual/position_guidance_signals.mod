@@ -1,6 +1,6 @@
 ! rapidvc: the example of section 9.3.6.2 of the EGM manual ("Using EGM Position Guidance
-! with signals as input"), transcribed as printed. Repaired (shared/reference/egm-rapid.md
-! section 11.2): comment lines that had lost their "!" when the page was wrapped, the OCR'd
+! with signals as input"), transcribed as printed. Repaired (OCR and layout
+! damage): comment lines that had lost their "!" when the page was wrapped, the OCR'd
 ! names "eqmID1"/"eqmID2" (egmID1/egmID2) and "ao MoveY" (ao_MoveY), and two LaTeX artefacts
 ! that replaced "\x:=egm_minmax_lin1 \y:=egm_minmax_lin1 \z:=egm_minmax_lin1".
 ! The analog output signals ao_MoveX ... ao_RotZ are I/O signals of the controller's I/O

@@ -1,6 +1,6 @@
 ! rapidvc: the example of section 9.3.6.1 of the EGM manual ("Using EGM Position Guidance
-! with an UdpUc device"), transcribed as printed. Repaired (shared/reference/egm-rapid.md
-! section 11.1): a stray "</pre>" after THEN, comment lines that had lost their "!" when the
+! with an UdpUc device"), transcribed as printed. Repaired (OCR and layout
+! damage): a stray "</pre>" after THEN, comment lines that had lost their "!" when the
 ! page was wrapped, and the typo "executeion" in a comment.
 MODULE EGM_test
 VAR egmident egmID1;

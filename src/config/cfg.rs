@@ -1,6 +1,6 @@
 //! The generic reader of ABB's CFG text format: a header line, `#`-separated sections, and instances of `-Attribute value` pairs.
 //!
-//! The format (observed from RobotWare backups; `egm-rapid.md` §10.3):
+//! The format (observed from RobotWare backups; docs/egm.md, "Configuration files"):
 //!
 //! ```text
 //! EIO:CFG_1.0:6:1::

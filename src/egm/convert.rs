@@ -1,6 +1,6 @@
 //! Conversion between the EGM protobuf messages and rapidvc's domain data (mm, degrees, `[w,x,y,z]`).
 //!
-//! Decoding rules (egm-protocol.md §4): the message type comes from the mode, never from the
+//! Decoding rules (docs/egm.md, "Messages accepted"): the message type comes from the mode, never from the
 //! bytes; NaN and infinity are rejected; a missing `required` leaf is rejected (as Google's
 //! parser would); Euler angles (ZYX, degrees) win over the quaternion when both are sent; the
 //! quaternion is normalised; joint vectors need at least 6 values (extras ignored); parts of a

@@ -5,11 +5,11 @@
 //! [`PoseGuidance`] once when `EGMRunPose` starts (frames frozen there) and calls it every
 //! EGM cycle; the servo law itself (`egm::servo`) works on the joint vectors it returns.
 //!
-//! # The frame model (egm-rapid.md §7, rapidvc's documented choice)
+//! # The frame model (docs/egm.md, "Frames in pose mode"; rapidvc's documented choice)
 //!
 //! * `base(WORLD)` = identity, `base(BASE)` = the robot base in world, `base(WOBJ)` = user
 //!   frame · object frame of `\WObj`, `base(TOOL)` = the **tool0 (flange)** pose frozen at the
-//!   start of `EGMRun` (the seed's frame table says "relative to tool0"; the frame does not
+//!   start of `EGMRun` (the manual's frame table says "relative to tool0"; the frame does not
 //!   follow the moving robot). [`base_of`].
 //! * Sensor frame `F_s = base(SensFrType) · SensorFrame`, correction frame
 //!   `F_c = base(CorrFrType) · CorrFrame`, both computed once in [`PoseGuidance::new`].

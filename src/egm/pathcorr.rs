@@ -6,7 +6,7 @@
 //!
 //! # Model
 //!
-//! * **Path frame** ([`PathFrame::new`], the manual's definition, `egm-rapid.md` §8): x
+//! * **Path frame** ([`PathFrame::new`], the manual's definition, docs/egm.md, "Path frame"): x
 //!   along the path tangent, y = x × (z axis of the active tool) normalised, z = x × y.
 //!   With the tool pointing down (tool z = −Z) on a path along +X, y is +Y and z is +Z:
 //!   z points roughly against the tool axis, i.e. away from the work.
@@ -45,7 +45,7 @@
 //!   `look_ahead` ahead for LATR). This is what the built-in LTAPP stand-ins report; the
 //!   LTAPP protocol itself is not public and not implemented.
 //!
-//! These are rapidvc's choices where ABB documents nothing (`egm-rapid.md` §8, §12).
+//! These are rapidvc's choices where ABB documents nothing (docs/egm.md, "Path correction").
 #![deny(
     clippy::unwrap_used,
     clippy::expect_used,

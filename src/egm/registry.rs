@@ -1,4 +1,4 @@
-//! EGM identities of one RAPID task and their state machine (egm-rapid.md §2–§5): EGMGetId, EGMReset, EGMGetState, the setups and activations, and the checks of EGMRun…, EGMStop, EGMStreamStart/Stop and EGMMoveL/C. Pure data: no time, no sockets, no locks.
+//! EGM identities of one RAPID task and their state machine (docs/egm.md, "Identities and states"): EGMGetId, EGMReset, EGMGetState, the setups and activations, and the checks of EGMRun…, EGMStop, EGMStreamStart/Stop and EGMMoveL/C. Pure data: no time, no sockets, no locks.
 //!
 //! # How the controller and the interpreter use it
 //!

@@ -153,7 +153,7 @@ fn pose_of(p: &EgmPose) -> Option<Pose> {
     })
 }
 
-/// The mandatory items of egm-protocol.md §3.2 that `robot` lacks (empty when complete).
+/// The mandatory items of docs/egm.md, "Messages sent", that `robot` lacks (empty when complete).
 /// This is what the strictest client (libegm) checks before it replies.
 pub fn missing_mandatory(robot: &EgmRobot) -> Vec<&'static str> {
     let mut missing = Vec::new();

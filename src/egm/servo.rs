@@ -1,6 +1,6 @@
 //! The EGM servo law the motion core calls each tick: pure, over joint vectors in degrees, unit-tested, no I/O and no allocation per step.
 //!
-//! This is the discrete model of egm-rapid.md §6.3 (each step a rapidvc choice where ABB does
+//! This is the discrete model of docs/egm.md, "Servo law" (each step a rapidvc choice where ABB does
 //! not document one). Per step of length Ts = [`ServoParams::period`]:
 //!
 //! 1. e = ref − pos_cmd (selected axes; unselected axes keep their start value);

@@ -272,7 +272,7 @@ impl SignalDef {
 }
 
 /// The signals rapidvc defines without any configuration: the analog outputs of the EGM
-/// manual's signal example (`egm-rapid.md` §9), range −2000…2000 (mm or degrees).
+/// manual's signal example (docs/egm.md, "Signal sources"), range −2000…2000 (mm or degrees).
 pub fn builtin_signals() -> Vec<SignalDef> {
     [
         "ao_MoveX", "ao_MoveY", "ao_MoveZ", "ao_RotX", "ao_RotY", "ao_RotZ",

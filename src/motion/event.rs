@@ -130,7 +130,7 @@ pub enum MotionError {
 }
 
 impl MotionError {
-    /// The ABB event log number and title where one is known (robot.md §10). Events without a
+    /// The ABB event log number and title where one is known (docs/robot.md, "Errors and events"). Events without a
     /// verified ABB number return `None`.
     ///
     /// * kinematics: [`KinError::event`] (50050, 50027, 50026);

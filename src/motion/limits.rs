@@ -84,7 +84,7 @@ pub fn axis_accels(model: &RobotModel, s: &MotionSettings) -> JointsDeg {
 }
 
 /// The zone radius actually used at a fly-by point: the programmed one, reduced to half the
-/// path length of each neighbouring move (robot.md §9, "zone limits").
+/// path length of each neighbouring move (docs/robot.md, "Zones and corner paths").
 pub fn zone_radius(programmed: f64, len_before: f64, len_after: f64) -> f64 {
     if programmed.is_nan() || len_before.is_nan() || len_after.is_nan() {
         return 0.0;

@@ -1,6 +1,6 @@
 //! The planner: turns a `MotionCommand` into a [`Segment`] of per-cycle samples before the
 //! robot moves, so unreachable targets, axis limits, singularities and impossible circles are
-//! reported while the robot still stands where it is (robot.md §9).
+//! reported while the robot still stands where it is (docs/robot.md, "Planning").
 //!
 //! Pure and deterministic: the same commands from the same start give the same samples. It
 //! runs outside the motion cycle (on the caller's thread), since it does the inverse
@@ -329,7 +329,7 @@ impl Planner {
         }
     }
 
-    /// Normalised speed and acceleration limits of a move (robot.md §9).
+    /// Normalised speed and acceleration limits of a move (docs/robot.md, "Profiles and acceleration").
     fn profile_limits(
         &self,
         cmd: &MotionCommand,

@@ -1,4 +1,4 @@
-//! Trapezoidal velocity profiles of a normalised path parameter `s ∈ [0, 1]` (robot.md §9:
+//! Trapezoidal velocity profiles of a normalised path parameter `s ∈ [0, 1]` (docs/robot.md, "Profiles and acceleration":
 //! trapezoidal, triangular when the move is short).
 //!
 //! Every move is a geometric path `s ↦ pose/joints` plus one of these time laws, so all axes of

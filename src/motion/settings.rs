@@ -14,7 +14,7 @@ pub struct CoreConfig {
     pub event_capacity: usize,
 }
 
-/// The default motion cycle: 4 ms (250 Hz), as on an IRC5 (robot.md §9.1).
+/// The default motion cycle: 4 ms (250 Hz), as on an IRC5 (docs/robot.md, "Motion cycle").
 pub const DEFAULT_PERIOD: Duration = Duration::from_millis(4);
 
 /// Default queue length (moves planned ahead of the robot).

@@ -29,7 +29,7 @@ pub struct SpeedData {
 }
 
 impl SpeedData {
-    /// A predefined `vN`: `[N, 500, 5000, 1000]` (robot.md §9).
+    /// A predefined `vN`: `[N, 500, 5000, 1000]` (docs/robot.md, "Profiles and acceleration").
     pub const fn v(v_tcp: f64) -> SpeedData {
         SpeedData {
             v_tcp,

@@ -1,5 +1,5 @@
 //! ABB `confdata [cf1, cf4, cf6, cfx]`: quarter revolutions of axes 1, 4, 6 and the arm
-//! configuration number, computed exactly as robot.md §5 describes.
+//! configuration number, computed exactly as docs/robot.md, "Configuration", describes.
 
 use std::fmt;
 
@@ -15,7 +15,7 @@ pub struct ConfData {
     pub cf4: i32,
     /// Quarter revolution of axis 6.
     pub cf6: i32,
-    /// Arm configuration 0…7 (robot.md §5.2):
+    /// Arm configuration 0…7 (docs/robot.md, "Configuration"):
     /// `4·[wrist centre behind axis 1] + 2·[wrist centre behind the lower arm] + [axis 5 < 0]`.
     pub cfx: i32,
 }
@@ -50,13 +50,13 @@ impl fmt::Display for ConfData {
 pub const CONF_SNAP_EPS_DEG: f64 = 1e-6;
 
 /// How far (deg) outside the programmed quadrant an IK solution of axis 1, 4 or 6 may lie and
-/// still count as the programmed configuration under ConfJ\On (robot.md §6). Exactly matching
+/// still count as the programmed configuration under ConfJ\On (docs/robot.md, "Configuration checks"). Exactly matching
 /// solutions always win; this slack only absorbs targets taught right at a quadrant boundary
 /// whose stored orientation was rounded (e.g. axis 6 taught at −0.001° gives cf6 = −1, but the
 /// rounded quaternion solves to +0.0004°). ABB does not publish its tolerance.
 pub const CONF_QUADRANT_SLACK_DEG: f64 = 0.5;
 
-/// The quarter-revolution rule of RRM p.153 (robot.md §5.1), `θ` in degrees:
+/// The quarter-revolution rule of RRM p.153 (docs/robot.md, "Configuration"), `θ` in degrees:
 /// `trunc(θ/90)` for θ ≥ 0 and `trunc(θ/90 − 1)` for θ < 0. At exact negative multiples of 90°
 /// this is one less than `floor(θ/90)` (−90° → −2, −180° → −3). Angles within
 /// [`CONF_SNAP_EPS_DEG`] of a multiple of 90° are snapped onto it first. Non-finite input gives
@@ -108,7 +108,7 @@ pub const CFX_ZERO_ELBOW_SIN: f64 = 1e-12;
 /// Axis 5 within this (deg) of 0° counts as zero for the cfx bit.
 pub const CFX_ZERO_WRIST_DEG: f64 = CONF_SNAP_EPS_DEG;
 
-/// The arm configuration number from the three det-J factors (robot.md §5.2). A factor of
+/// The arm configuration number from the three det-J factors (docs/robot.md, "Configuration"). A factor of
 /// zero — within [`CFX_ZERO_SHOULDER_MM`], [`CFX_ZERO_ELBOW_SIN`], [`CFX_ZERO_WRIST_DEG`], i.e.
 /// exactly on the singularity up to float noise — counts as positive ("in front of" /
 /// "axis 5 positive").
@@ -159,7 +159,7 @@ mod tests {
 
     #[test]
     fn quarter_rule_examples() {
-        // robot.md §5.1.
+        // docs/robot.md, "Configuration".
         assert_eq!(quarter(83.5), 0);
         assert_eq!(quarter(0.103), 0);
         assert_eq!(quarter(-0.136), -1);
@@ -203,7 +203,7 @@ mod tests {
 
     #[test]
     fn cfx_table() {
-        // robot.md §5.2, all eight rows.
+        // docs/robot.md, "Configuration", all eight rows.
         let f = |s: f64, e: f64, w: f64| SingularityFactors {
             shoulder_mm: s,
             elbow_sin: e,

@@ -67,11 +67,11 @@ fn joints_text(j: &JointsDeg) -> String {
 }
 
 impl KinError {
-    /// The ABB event log number and title (robot.md §10):
+    /// The ABB event log number and title (docs/robot.md, "Errors and events"):
     /// outside reach, configuration unreachable and non-finite input → 50050 "Position outside
     /// reach"; joint out of range → 50027 "Joint out of range"; singularity → 50026 "Close to
     /// singularity". The mapping of an unreachable *configuration* to 50050 is one of the two
-    /// candidates robot.md §6 names (ABB's exact event is unverified).
+    /// candidates (docs/robot.md, "Errors and events"; ABB's exact event is unverified).
     pub fn event(&self) -> (u32, &'static str) {
         match self {
             KinError::OutsideReach { .. }

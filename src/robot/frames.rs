@@ -1,4 +1,4 @@
-//! The frame chain of robot.md §7: world, base, `tooldata` (tframe, robot-held or stationary),
+//! The frame chain (docs/robot.md, "Frame chain"): world, base, `tooldata` (tframe, robot-held or stationary),
 //! `wobjdata` (uframe · oframe, robot-held or fixed) and program displacement.
 //!
 //! Robot-held tool: `base · FK(q) · tframe = uframe · oframe · pdisp · target`, so the flange in

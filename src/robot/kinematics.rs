@@ -3,7 +3,7 @@
 //!
 //! rs-opw-kinematics solves the arm (≤ 8 solutions in (−180°, 180°]); everything ABB-specific
 //! happens here: solutions are expanded by ±360°·k on every axis whose range allows it, checked
-//! against the real limits in degrees, and classified by confdata (robot.md §3, §5, §6).
+//! against the real limits in degrees, and classified by confdata (docs/robot.md, "Inverse kinematics", "Configuration").
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -272,7 +272,7 @@ impl Robot {
         }
     }
 
-    /// confdata of a joint vector (robot.md §5).
+    /// confdata of a joint vector (docs/robot.md, "Configuration").
     pub fn conf_of(&self, q: &JointsDeg) -> ConfData {
         conf_from(q, &self.singularity(q))
     }
@@ -291,13 +291,13 @@ impl Robot {
 
     /// True when the wrist centre lies between axis 1 and axis 2 (0 < r < a1). There the
     /// "in front of axis 1" bit of cfx depends on the convention: rapidvc measures from axis 1
-    /// (robot.md §5.2), ARTE's `compute_configuration.m` from axis 2. Callers may warn.
+    /// (docs/robot.md, "Configuration"), ARTE's `compute_configuration.m` from axis 2. Callers may warn.
     pub fn cfx_convention_dependent(&self, q: &JointsDeg) -> bool {
         let r = self.singularity(q).shoulder_mm;
         r > 0.0 && r < super::units::m_to_mm(self.model.opw.a1)
     }
 
-    /// The three det-J factors of a joint vector (robot.md §8).
+    /// The three det-J factors of a joint vector (docs/robot.md, "Singularities").
     pub fn singularity(&self, q: &JointsDeg) -> SingularityFactors {
         SingularityFactors::of(&self.model.opw, q)
     }

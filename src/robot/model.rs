@@ -6,10 +6,10 @@
 use super::JointsDeg;
 use super::models::MODELS;
 
-/// OPW geometry of a 6-axis arm, in **metres** (robot.md §1.2).
+/// OPW geometry of a 6-axis arm, in **metres** (docs/robot.md, "Models").
 ///
 /// Every model uses `b = 0`, joint offsets `[0, 0, −90°, 0, 0, 0]` and all sign corrections
-/// +1, which makes OPW joint values equal to ABB axis values (robot.md §2).
+/// +1, which makes OPW joint values equal to ABB axis values (docs/robot.md, "Axis values").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpwParams {
     /// x offset of axis 2 from axis 1.
@@ -103,7 +103,7 @@ pub fn models() -> &'static [RobotModel] {
     &MODELS
 }
 
-/// The default model, IRB 2600-12/1.85 (robot.md §1.1: ABB's EGM examples were recorded on it).
+/// The default model, IRB 2600-12/1.85 (docs/robot.md, "Models": ABB's EGM examples were recorded on it).
 pub fn default_model() -> &'static RobotModel {
     &MODELS[0]
 }

@@ -1,6 +1,6 @@
 //! The robot model table: OPW geometry, axis limits and speeds of every supported ABB arm.
 //!
-//! Geometry, limits and axis speeds come from robot.md §1.2–1.3 (ROS-Industrial support
+//! Geometry, limits and axis speeds are public figures (docs/robot.md, "Models": ROS-Industrial support
 //! packages, rs-opw-kinematics presets, RobotComponents facts). Two constants per model are
 //! **not** published by ABB and follow documented rules instead:
 //!
@@ -15,7 +15,7 @@
 //!   row against this rule.
 //!
 //! The IRB 2400 is left out on purpose: ROS-I models it with coupled axes 2/3, so its OPW
-//! parameters are not in ABB axis units (robot.md §2).
+//! parameters are not in ABB axis units (docs/robot.md, "Models").
 
 use super::model::{JointLimit, OpwParams, RobotModel};
 

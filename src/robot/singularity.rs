@@ -1,4 +1,4 @@
-//! Singularity factors of an OPW arm (the three factors of det J, robot.md §8) and the
+//! Singularity factors of an OPW arm (the three factors of det J, docs/robot.md, "Singularities") and the
 //! "close to singularity" detectors built on them.
 //!
 //! For b = 0, `|det J| = |r · c2 · k · sin(q3m + ψ3) · sin J5|` with
@@ -27,7 +27,7 @@ impl SingularityFactors {
     /// The factors of `q` (ABB axis values, degrees) on an arm with geometry `p`.
     pub fn of(p: &OpwParams, q: &JointsDeg) -> SingularityFactors {
         let q2 = deg_to_rad(q[1]);
-        // q3m = J3 + 90° (the model's −90° offset on axis 3, robot.md §2).
+        // q3m = J3 + 90° (the model's −90° offset on axis 3, docs/robot.md, "Axis values").
         let q3m = deg_to_rad(q[2] + 90.0);
         let psi3 = p.psi3();
         let elbow = q3m + psi3;
@@ -145,7 +145,7 @@ mod tests {
 
     #[test]
     fn stretched_elbow_of_the_2600() {
-        // robot.md §8: J3 = −90° − ψ3 = −81.77°.
+        // docs/robot.md, "Singularities": J3 = −90° − ψ3 = −81.77°.
         let j3 = -90.0 - rad_to_deg(IRB2600_185.psi3());
         assert!((j3 - -81.77).abs() < 0.005, "{j3}");
         let f = SingularityFactors::of(&IRB2600_185, &[0.0, 0.0, j3, 0.0, 30.0, 0.0]);

@@ -310,7 +310,7 @@ mod tests {
             &orient_zyx(90.0, 0.0, 180.0).unwrap(),
             &[0.0, H, H, 0.0]
         ));
-        // The seed's tool orientation [0.8339, 0, 0.5519, 0] is a rotation of ~67 deg about y.
+        // The manual's tool orientation [0.8339, 0, 0.5519, 0] is a rotation of ~67 deg about y.
         let q = orient_zyx(0.0, 67.0, 0.0).unwrap();
         assert!((q[0] - 0.833_886).abs() < 1e-6 && (q[2] - 0.551_937).abs() < 1e-6);
         assert_eq!(

@@ -526,7 +526,7 @@ fn robot_message_has_every_mandatory_field_and_no_force() {
     assert_eq!(back.utilization_rate, Some(12.5));
     assert!(back.measured_force.is_none());
     assert!(back.rapid_from_robot().is_none());
-    // The V1.1 layout is about 317 bytes (egm-protocol.md §3.3).
+    // A complete V1.1-layout message is under 400 bytes (docs/egm.md, "Messages sent").
     assert!(bytes.len() < 400, "{} bytes", bytes.len());
 }
 

@@ -7,7 +7,7 @@
 //!
 //! Pose mode: the six values are the sensor pose `S` in the sensor frame: x, y, z in mm and
 //! rx, ry, rz in degrees as **ZYX Euler angles**, `R = Rz(rz)·Ry(ry)·Rx(rx)` (the wire's
-//! convention, egm-rapid.md §9 recommendation). A component without a signal keeps its start
+//! convention; docs/egm.md, "Signal sources"). A component without a signal keeps its start
 //! value in the sensor frame ([`super::PoseGuidance::start_sensor_pose`], decomposed the
 //! same way). Joint mode: an axis without a signal keeps its start value.
 

@@ -1,4 +1,4 @@
-//! Every default of the EGM instructions in one place (egm-rapid.md §3, §6, §10.1), with where each comes from.
+//! Every default of the EGM instructions in one place (docs/egm.md, "Activations and defaults"), with where each comes from.
 //!
 //! | Argument | Default | Source |
 //! |---|---|---|
@@ -13,7 +13,7 @@
 //! | `\MaxPosDeviation` | 1000° | ABB |
 //! | `\MaxSpeedDeviation` | 1 °/s | ABB — users trip on it; rapidvc keeps it and logs event 90110 while it limits |
 //! | EGMRun… `\CondTime` | 1 s | ABB |
-//! | `\RampInTime` | the profile's Default Ramp Time (0.5 s in "default") | Unknown; rapidvc's choice (egm-rapid.md §6.2) |
+//! | `\RampInTime` | the profile's Default Ramp Time (0.5 s in "default") | Unknown; rapidvc's choice (docs/egm.md, "Stop modes and ramps") |
 //! | `\RampOutTime` | the profile's Default Ramp Time | ABB (when the stop is not from RAPID); rapidvc also uses it when EGMRun/EGMStop omit it |
 //! | `\PosCorrGain` | 1 (k = 1 × the profile's Default Proportional Position Gain, 5 in "default") | ABB |
 //! | EGMStop `\RampOutTime` | the EGMRun's ramp-out time | rapidvc's choice |

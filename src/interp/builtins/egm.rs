@@ -1,6 +1,6 @@
-//! The EGM instructions and `EGMGetState` (egm-rapid.md §3): RAPID arguments become the registry's request types and go to the host's [`EgmHost`]; EGMRunJoint/EGMRunPose, EGMWaitCond and EGMStop wait for the controller while traps keep running.
+//! The EGM instructions and `EGMGetState` (docs/egm.md, "Instructions"): RAPID arguments become the registry's request types and go to the host's [`EgmHost`]; EGMRunJoint/EGMRunPose, EGMWaitCond and EGMStop wait for the controller while traps keep running.
 //!
-//! An `egmident` is identified by its variable (egm-rapid.md §2): the name of a task-global
+//! An `egmident` is identified by its variable (docs/egm.md, "Identities and states"): the name of a task-global
 //! variable, `MODULE/name` for a `LOCAL` one, `ROUTINE/name` for routine data, with `{k}` for
 //! an array element (k counted from 1 in row-major order). The same variable passed through
 //! `VAR` parameters keeps its name, so EGMGetId on it is idempotent wherever it is called.

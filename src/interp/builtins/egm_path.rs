@@ -1,4 +1,4 @@
-//! EGM path correction in RAPID: `EGMMoveL` and `EGMMoveC` (egm-rapid.md §3.4, §8) build a `MoveL` / `MoveC` from their arguments and the active program displacement and hand it to the host's [`EgmPathHost`], which corrects it with the sensor data while it runs; at the fine point that ends a corrected sequence they wait (traps keep running) and end the sequence.
+//! EGM path correction in RAPID: `EGMMoveL` and `EGMMoveC` (docs/egm.md, "Path correction") build a `MoveL` / `MoveC` from their arguments and the active program displacement and hand it to the host's [`EgmPathHost`], which corrects it with the sensor data while it runs; at the fine point that ends a corrected sequence they wait (traps keep running) and end the sequence.
 //!
 //! `EGMActMove`, the setups and `PDispSet`/`PDispOff` are the EGM and motion domains'
 //! natives; the signatures here replace the EGM domain's placeholders of the same names.

@@ -1,5 +1,5 @@
 //! Geometric paths of the four move kinds as functions of `s ∈ [0, 1]`: axis lines, straight
-//! TCP lines with SLERP, and circular arcs through a circle point (robot.md §9).
+//! TCP lines with SLERP, and circular arcs through a circle point (docs/robot.md, "Planning").
 
 use std::f64::consts::TAU;
 
