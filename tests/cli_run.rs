@@ -9,7 +9,7 @@
 mod procs;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use procs::{Ended, Proc};
@@ -208,11 +208,13 @@ fn alive(pid: u32) -> bool {
 }
 
 /// `bench realtime`'s busy-loop load processes end when rapidvc is killed (SIGKILL leaves
-/// no time for clean-up): they watch a pipe whose write end only the bench holds.
+/// no time for clean-up): they watch a pipe whose write end only the bench holds. (Before,
+/// `timeout … sh -c 'while :; do :; done'` children spun on until their time-out.)
 #[test]
 fn bench_load_processes_die_with_their_parent() {
     let dir = temp_dir("bench-load");
-    let bench = Proc::spawn(rapidvc(
+    // No pipes: an orphan holding them would make reading the output wait for the orphan.
+    let mut bench = rapidvc(
         &dir,
         &[
             "bench",
@@ -223,7 +225,12 @@ fn bench_load_processes_die_with_their_parent() {
             "1",
             "--no-priority",
         ],
-    ));
+    )
+    .stdin(Stdio::null())
+    .stdout(Stdio::null())
+    .stderr(Stdio::null())
+    .spawn()
+    .unwrap();
     let start = Instant::now();
     let workers = loop {
         let w = children_of(bench.id());
@@ -232,20 +239,17 @@ fn bench_load_processes_die_with_their_parent() {
         }
         std::thread::sleep(Duration::from_millis(50));
     };
+    bench.kill().unwrap();
+    let status = bench.wait().unwrap();
+    assert_eq!(status.code(), None, "killed by the signal");
     assert_eq!(workers.len(), 1, "one load process expected: {workers:?}");
-    let kill = Command::new("kill")
-        .args(["-KILL", &bench.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let ended = bench.wait(Duration::from_secs(10));
-    assert_eq!(ended.code, None, "killed by the signal");
     let start = Instant::now();
     while workers.iter().any(|&w| alive(w)) && start.elapsed() < Duration::from_secs(10) {
         std::thread::sleep(Duration::from_millis(50));
     }
     let orphans: Vec<u32> = workers.iter().copied().filter(|&w| alive(w)).collect();
-    for &o in &orphans {
+    let grandchildren: Vec<u32> = orphans.iter().flat_map(|&o| children_of(o)).collect();
+    for &o in orphans.iter().chain(&grandchildren) {
         let _ = Command::new("kill")
             .args(["-KILL", &o.to_string()])
             .status();
