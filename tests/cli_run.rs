@@ -375,6 +375,20 @@ fn pers_files_keep_arrays_comments_and_unknown_entries() {
         "{}",
         out.stderr
     );
+    // Not a regular file (a FIFO): refused before the run, never replaced.
+    let fifo = dir.join("fifo");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let out = run_in(&dir, &["run", "arr.mod", "--pers", "fifo"]);
+    assert_eq!(out.code, Some(2), "{}", out.stderr);
+    assert_eq!(out.stdout, "");
+    assert!(out.stderr.contains("not a regular file"), "{}", out.stderr);
+    assert!(!std::fs::metadata(&fifo).unwrap().is_file());
     // A broken line: refused before the run, the file is not touched.
     let broken = "PERS num runs := 1;\nrm -rf /\n";
     std::fs::write(&pers, broken).unwrap();

@@ -68,11 +68,16 @@ fn dir_of(path: &Path) -> &Path {
 
 /// The identity of an output file (which may not exist yet); an error when it cannot be
 /// written there: its directory is missing or not writable, or the path is a directory.
-fn output_identity(role: &Role<'_>) -> Result<Identity, String> {
+/// `None` for an existing special file (`/dev/null`, a FIFO, a terminal), which is written
+/// as it is and compared with nothing.
+fn output_identity(role: &Role<'_>) -> Result<Option<Identity>, String> {
     let path = role.path;
     let what = &role.what;
     if path.is_dir() {
         return Err(format!("{what} {}: is a directory", path.display()));
+    }
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Ok(None);
     }
     let dir = dir_of(path);
     if !dir.is_dir() {
@@ -103,7 +108,7 @@ fn output_identity(role: &Role<'_>) -> Result<Identity, String> {
             .join(name),
     };
     let inode = std::fs::metadata(&canonical).ok().as_ref().and_then(inode);
-    Ok(Identity { canonical, inode })
+    Ok(Some(Identity { canonical, inode }))
 }
 
 /// Check the outputs of a run before it starts: each can be written, none is one of the
@@ -117,7 +122,9 @@ pub fn check_outputs(inputs: &[Role<'_>], outputs: &[Role<'_>]) -> Result<(), St
         .collect();
     let mut outs: Vec<(&Role<'_>, Identity)> = Vec::with_capacity(outputs.len());
     for out in outputs {
-        let id = output_identity(out)?;
+        let Some(id) = output_identity(out)? else {
+            continue;
+        };
         if let Some((input, _)) = ins.iter().find(|(r, i)| r.what != out.what && i.same(&id)) {
             return Err(format!(
                 "{} {} is an input of this run ({} {}): refusing to overwrite it",
@@ -144,7 +151,8 @@ pub fn check_outputs(inputs: &[Role<'_>], outputs: &[Role<'_>]) -> Result<(), St
 /// Replace `path` with what `write` writes, atomically: the text goes to a temporary file
 /// in the same directory, which is flushed to disk and renamed over `path` only when every
 /// write succeeded. On any error `path` is untouched and the temporary file removed. An
-/// existing file keeps its permissions.
+/// existing file keeps its permissions; a path that exists but is not a regular file (a
+/// device, a FIFO) is refused, never replaced.
 pub fn replace_with(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -152,6 +160,12 @@ pub fn replace_with(
     // Through a symbolic link: replace the file it points to, not the link.
     let resolved = std::fs::canonicalize(path).ok();
     let path = resolved.as_deref().unwrap_or(path);
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file",
+        ));
+    }
     let dir = dir_of(path);
     let name = path
         .file_name()
@@ -257,6 +271,21 @@ mod tests {
         let e = check_outputs(&inputs, &[Role::new("--plot", &dir)]).unwrap_err();
         assert!(e.contains("is a directory"), "{e}");
         assert!(check_outputs(&inputs, &[Role::new("--trace", &csv)]).is_ok());
+        // Special files are written as they are, also twice, but never replaced (a rename
+        // over a device or FIFO would put a regular file in its place).
+        let fifo = dir.join("fifo");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|s| s.success()));
+        assert!(
+            check_outputs(
+                &inputs,
+                &[Role::new("--trace", &fifo), Role::new("--egm-log", &fifo)]
+            )
+            .is_ok()
+        );
+        assert!(replace(&fifo, "x").is_err());
+        assert!(std::fs::metadata(&fifo).is_ok_and(|m| !m.is_file()));
+        let _ = std::fs::remove_file(&fifo);
         assert_eq!(names(&dir), ["prog.mod"]);
         let _ = std::fs::remove_dir_all(&dir);
     }

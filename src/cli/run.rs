@@ -363,6 +363,12 @@ fn read_pers(path: &Path) -> Result<Option<StoredPers>, String> {
     if !path.exists() {
         return Ok(None);
     }
+    if !path.is_file() {
+        return Err(format!(
+            "--pers {}: not a regular file (the persistents file is replaced when the run ends)",
+            path.display()
+        ));
+    }
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let entries = pers::parse(&text).map_err(|e| {
