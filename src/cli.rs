@@ -5,15 +5,18 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-mod bench;
+pub mod bench;
 mod check;
 mod dump_ast;
+mod files;
+mod interrupt;
+pub mod num;
 pub mod program;
 mod progress_line;
 mod render;
 pub mod robots;
-mod run;
-mod sensor;
+pub mod run;
+pub mod sensor;
 mod test;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).

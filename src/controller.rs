@@ -112,4 +112,7 @@ pub enum ControllerError {
     /// A trace or plot could not be written.
     #[error("{0}")]
     Sink(String),
+    /// The run was interrupted (Ctrl-C) while a move waited for room in the queue.
+    #[error("the run was interrupted")]
+    Interrupted,
 }

@@ -36,6 +36,7 @@ mod stmt;
 pub mod value;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 pub use crate::ir::errnum;
 use crate::ir::{GlobalOrigin, Program, RoutineId, RoutineKind, Storage};
@@ -59,6 +60,10 @@ pub enum Outcome {
     /// `Stop` was executed.
     Stopped,
 }
+
+/// With a stop request ([`Interp::set_stop_request`]), the per-statement slow path runs at
+/// least this often (a few microseconds of statements).
+pub const STOP_CHECK_EVERY: u64 = 1024;
 
 /// What the before-statement hook wants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,7 +145,8 @@ pub struct Interp {
     next_poll: u64,
     budget: Option<u64>,
     hook: Option<StmtHook>,
-    /// Set when the host (a test, a debugger) asked for a stop.
+    /// Set from outside (Ctrl-C) to stop the program as `Stop` does.
+    stop: Option<Arc<AtomicBool>>,
     initialised: bool,
 }
 
@@ -185,6 +191,7 @@ impl Interp {
             next_poll: u64::MAX,
             budget: None,
             hook: None,
+            stop: None,
             initialised: false,
         }
     }
@@ -219,6 +226,21 @@ impl Interp {
     pub fn set_hook(&mut self, hook: Option<StmtHook>) {
         self.hook = hook;
         self.update_poll();
+    }
+
+    /// Stop the program as `Stop` does (the run ends with [`Outcome::Stopped`]) once `flag`
+    /// turns true: checked at least every [`STOP_CHECK_EVERY`] statements and on every turn
+    /// of a wait. A host that blocks for long (the controller) should watch the flag too.
+    pub fn set_stop_request(&mut self, flag: Arc<AtomicBool>) {
+        self.stop = Some(flag);
+        self.update_poll();
+    }
+
+    /// True once a stop was requested (see [`Interp::set_stop_request`]).
+    pub fn stop_requested(&self) -> bool {
+        self.stop
+            .as_ref()
+            .is_some_and(|f| f.load(Ordering::Relaxed))
     }
 
     /// How much of the calling thread's stack a run may use (default 1 MiB, safe on a
@@ -279,23 +301,8 @@ impl Interp {
         }
         self.stack_base = call::stack_addr();
         let prog = self.prog.clone();
-        let Some(rid) = prog.find_proc(entry) else {
-            return Err(Box::new(RuntimeError {
-                kind: ErrorKind::Rapid(errnum::ERR_REFUNKPRC),
-                message: format!("there is no procedure `{entry}` to start"),
-                span: Span::default(),
-                stack: Vec::new(),
-            }));
-        };
+        let rid = Self::entry_point(&prog, entry)?;
         let r = prog.routine(rid);
-        if r.kind != RoutineKind::Proc || r.params.iter().any(|p| !p.optional) {
-            return Err(Box::new(RuntimeError {
-                kind: ErrorKind::Rapid(errnum::ERR_CALLPROC),
-                message: format!("`{}` is not a procedure without parameters", r.name),
-                span: r.head_span,
-                stack: Vec::new(),
-            }));
-        }
         let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
         let res = self.call_routine(&prog, rid, &args, r.head_span);
         self.frames.clear();
@@ -310,6 +317,33 @@ impl Interp {
             Err(Unwind::Stop) => Ok(Outcome::Stopped),
             Err(u) => Err(self.unwind_to_error(u)),
         }
+    }
+
+    /// The procedure `entry` names, if a run can start there (a PROC without required
+    /// parameters); front ends check it before they start anything.
+    pub fn entry_point(prog: &Program, entry: &str) -> Result<RoutineId, Box<RuntimeError>> {
+        let Some(rid) = prog.find_proc(entry) else {
+            return Err(Box::new(RuntimeError {
+                kind: ErrorKind::Rapid(errnum::ERR_REFUNKPRC),
+                message: if entry.trim().is_empty() {
+                    "the name of the procedure to start is empty".to_string()
+                } else {
+                    format!("there is no procedure `{entry}` to start")
+                },
+                span: Span::default(),
+                stack: Vec::new(),
+            }));
+        };
+        let r = prog.routine(rid);
+        if r.kind != RoutineKind::Proc || r.params.iter().any(|p| !p.optional) {
+            return Err(Box::new(RuntimeError {
+                kind: ErrorKind::Rapid(errnum::ERR_CALLPROC),
+                message: format!("`{}` is not a procedure without parameters", r.name),
+                span: r.head_span,
+                stack: Vec::new(),
+            }));
+        }
+        Ok(rid)
     }
 
     /// Turn an unexpected unwind at the top level into an error.
@@ -337,14 +371,10 @@ impl Interp {
                 _ => false,
             })
             .filter_map(|(i, g)| {
-                let mut ty = self.prog.types.name(g.ty.base).to_string();
-                if !g.dims.is_empty() {
-                    let d: Vec<String> = g.dims.iter().map(|n| n.to_string()).collect();
-                    ty = format!("{ty}{{{}}}", d.join(","));
-                }
                 Some(pers::PersValue {
                     name: g.name.clone(),
-                    ty,
+                    ty: self.prog.types.name(g.ty.base).to_string(),
+                    dims: g.dims.clone(),
                     task: g.task,
                     value: self.globals.get(i)?.clone(),
                 })
@@ -372,6 +402,19 @@ impl Interp {
                 unknown.push(e.clone());
                 continue;
             };
+            let g = &self.prog.globals[i];
+            let declared = self.prog.types.name(g.ty.base);
+            if !declared.eq_ignore_ascii_case(&e.ty) || g.dims != e.dims {
+                warnings.push(format!(
+                    "line {}: persistent `{}` is stored as `{}{}` but declared as `{declared}{}`; the declared value is used",
+                    e.line,
+                    e.name,
+                    e.ty,
+                    pers::dims_text(&e.dims),
+                    pers::dims_text(&g.dims)
+                ));
+                continue;
+            }
             let Some(slot) = self.globals.get_mut(i) else {
                 continue;
             };
@@ -380,8 +423,8 @@ impl Interp {
                 *slot = v;
             } else {
                 warnings.push(format!(
-                    "stored value of persistent `{}` does not fit its declaration; the declared value is used",
-                    e.name
+                    "line {}: stored value of persistent `{}` does not fit its declaration; the declared value is used",
+                    e.line, e.name
                 ));
             }
         }
@@ -399,6 +442,9 @@ impl Interp {
                 None => u64::MAX,
             }
         };
+        if self.stop.is_some() {
+            self.next_poll = self.next_poll.min(self.steps + STOP_CHECK_EVERY);
+        }
     }
 
     /// Build a RAPID error at `span` with the current call stack.
@@ -446,6 +492,10 @@ impl Interp {
     }
 
     fn host_error(&self, e: HostError, span: Span) -> Unwind {
+        // A host that gave up because a stop was requested: the program stops.
+        if self.stop_requested() {
+            return Unwind::Stop;
+        }
         match e.errno {
             Some(n) => self.error(n, span, e.message),
             None => self.fatal(ErrorKind::Host, span, e.message),

@@ -293,7 +293,7 @@ fn bad_options_are_clear_errors() {
     for (args, expect) in [
         (
             vec!["--period", "0"],
-            "--period 0: the motion cycle must lie between",
+            "'--period <MS>': 0 is out of range: expected milliseconds from 0.1 to 100",
         ),
         (vec!["--start", "1,2,3"], "expected six axis values"),
         (

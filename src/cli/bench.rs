@@ -4,8 +4,9 @@
 //! second); `realtime` runs the motion thread at its fixed period while busy-loop processes
 //! load every core, and prints the distribution of the cycle-period error.
 
+use std::io::Read;
 use std::path::PathBuf;
-use std::process::{Child, ExitCode};
+use std::process::{Child, ExitCode, Stdio};
 use std::time::Duration;
 
 use crate::controller::{
@@ -19,6 +20,7 @@ use crate::robot::command::{
 };
 use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
 
+use super::num;
 use super::robots::RobotArg;
 
 mod egm;
@@ -36,8 +38,8 @@ pub struct BenchArgs {
 pub enum BenchKind {
     /// Virtual-time speed: simulated seconds per wall second over mixed MoveJ/MoveL.
     Virtual {
-        /// Simulated duration in seconds.
-        #[arg(long, default_value_t = 300.0)]
+        /// Simulated duration in seconds (more than 0, at most 1e6).
+        #[arg(long, default_value_t = 300.0, value_parser = num::bench_virtual_seconds)]
         seconds: f64,
         /// Also write a CSV trace (measures the cost of tracing).
         #[arg(long, value_name = "FILE.csv")]
@@ -49,26 +51,37 @@ pub enum BenchKind {
     /// EGM with an external sensor over loopback: loopback round trip, cycle-period jitter
     /// of a real-time EGM run, controller turnaround, lockstep speed-up.
     Egm {
-        /// Real-time run length in seconds (the lockstep run covers the same robot time).
-        #[arg(long, default_value_t = 20.0)]
+        /// Real-time run length in seconds (the lockstep run covers the same robot time;
+        /// more than 0, at most 86400).
+        #[arg(long, default_value_t = 20.0, value_parser = num::bench_wall_seconds)]
         seconds: f64,
         /// Do not ask for SCHED_FIFO priority.
         #[arg(long)]
         no_priority: bool,
     },
+    /// One busy-loop load process of `bench realtime` (started by it): spins until its
+    /// standard input closes — which happens when the bench ends or dies, however it dies —
+    /// or after `--seconds`.
+    #[command(hide = true)]
+    LoadWorker {
+        /// The longest time to spin, seconds.
+        #[arg(long, value_parser = num::bench_wall_seconds)]
+        seconds: f64,
+    },
     /// Real-time cycle jitter under load: histogram of |period − nominal|.
     Realtime {
-        /// Duration in seconds.
-        #[arg(long, default_value_t = 60.0)]
+        /// Duration in seconds (more than 0, at most 86400).
+        #[arg(long, default_value_t = 60.0, value_parser = num::bench_wall_seconds)]
         seconds: f64,
-        /// Busy-loop processes to start as load (each ends by itself after the run).
-        #[arg(long, default_value_t = 2)]
-        load: usize,
+        /// Busy-loop processes to start as load (0 to 256; each ends with the run, and with
+        /// rapidvc if it is killed).
+        #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u16).range(num::BENCH_LOAD))]
+        load: u16,
         /// Do not ask for SCHED_FIFO priority.
         #[arg(long)]
         no_priority: bool,
-        /// Spin this many µs before each deadline instead of sleeping.
-        #[arg(long, default_value_t = 200)]
+        /// Spin this many µs before each deadline instead of sleeping (0 to 4000).
+        #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(num::BENCH_SPIN_US))]
         spin_us: u64,
     },
 }
@@ -91,6 +104,7 @@ pub fn run(args: BenchArgs) -> ExitCode {
             seconds,
             no_priority,
         } => egm::bench_egm(seconds, no_priority),
+        BenchKind::LoadWorker { seconds } => load_worker(seconds),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -251,38 +265,57 @@ fn bench_virtual(seconds: f64, trace: Option<PathBuf>, robot: RobotArg) -> Resul
 
 fn bench_realtime(
     seconds: f64,
-    load: usize,
+    load: u16,
     no_priority: bool,
     spin: Duration,
 ) -> Result<(), String> {
-    let mut children: Vec<Child> = Vec::new();
+    let mut workers: Vec<Child> = Vec::new();
+    let exe = std::env::current_exe()
+        .map_err(|e| format!("cannot find this program to start the load processes: {e}"))?;
+    // A time bound as well, in case a worker outlives its pipe somehow.
     let bound = (seconds + 15.0).ceil().to_string();
     for _ in 0..load {
-        // `timeout` ends the busy loop by itself even if this process dies first.
-        match std::process::Command::new("timeout")
-            .args([bound.as_str(), "sh", "-c", "while :; do :; done"])
+        // The worker spins until its stdin closes: this process holds the only write end, so
+        // the kernel closes it when this process ends, even on SIGKILL.
+        match std::process::Command::new(&exe)
+            .args(["bench", "load-worker", "--seconds", bound.as_str()])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::null())
             .spawn()
         {
-            Ok(ch) => children.push(ch),
+            Ok(ch) => workers.push(ch),
             Err(e) => {
-                stop_children(&mut children);
-                return Err(format!(
-                    "cannot start the load processes (timeout, sh): {e}"
-                ));
+                stop_workers(&mut workers);
+                return Err(format!("cannot start the load processes: {e}"));
             }
         }
     }
     let result = realtime_run(seconds, no_priority, spin, load);
-    stop_children(&mut children);
+    stop_workers(&mut workers);
     result
 }
 
-fn realtime_run(
-    seconds: f64,
-    no_priority: bool,
-    spin: Duration,
-    load: usize,
-) -> Result<(), String> {
+/// The load process: spin on this core until stdin reaches its end (the bench that started
+/// it ended or died) or `seconds` passed.
+fn load_worker(seconds: f64) -> Result<(), String> {
+    std::thread::spawn(|| {
+        let mut stdin = std::io::stdin();
+        let mut buf = [0u8; 64];
+        while matches!(stdin.read(&mut buf), Ok(n) if n > 0) {}
+        std::process::exit(0);
+    });
+    let start = MonotonicClock::new();
+    let limit = Duration::from_secs_f64(seconds);
+    let mut x = 0u64;
+    while start.elapsed() < limit {
+        for _ in 0..1_000_000 {
+            x = std::hint::black_box(x.wrapping_add(1));
+        }
+    }
+    Ok(())
+}
+
+fn realtime_run(seconds: f64, no_priority: bool, spin: Duration, load: u16) -> Result<(), String> {
     let mut config = ControllerConfig::new(Robot::default(), START);
     config.clock = ClockMode::RealTime(if no_priority {
         RealtimeConfig::Ignore
@@ -327,18 +360,13 @@ fn verdict(ok: bool) -> &'static str {
     if ok { "met" } else { "NOT met" }
 }
 
-/// End the load processes: SIGTERM to each `timeout`, which passes it on to its busy loop
-/// (a SIGKILL would orphan the loop until the timeout).
-fn stop_children(children: &mut Vec<Child>) {
-    for ch in children.iter_mut() {
-        let terminated = std::process::Command::new("kill")
-            .args(["-TERM", &ch.id().to_string()])
-            .status()
-            .is_ok_and(|s| s.success());
-        if !terminated {
-            let _ = ch.kill();
-        }
-        let _ = ch.wait();
+/// End the load processes: closing a worker's stdin ends it; wait for each.
+fn stop_workers(workers: &mut Vec<Child>) {
+    for w in workers.iter_mut() {
+        drop(w.stdin.take());
     }
-    children.clear();
+    for w in workers.iter_mut() {
+        let _ = w.wait();
+    }
+    workers.clear();
 }

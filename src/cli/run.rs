@@ -6,14 +6,16 @@
 //! written.
 
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::str::FromStr;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
+use super::files::{self, Role};
 use super::robots::RobotArg;
-use super::{program, progress_line, render};
+use super::{interrupt, num, program, progress_line, render};
 
 pub mod egm;
 use crate::controller::egm::EgmController;
@@ -23,7 +25,6 @@ use crate::controller::{
 };
 use crate::interp::{Interp, Outcome, Output, pers};
 use crate::motion::CoreConfig;
-use crate::motion::settings::PERIOD_RANGE;
 use crate::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
 use crate::source::SourceMap;
@@ -47,14 +48,15 @@ pub struct RunArgs {
     /// Persistents file: loaded at start when it exists, written at the end.
     #[arg(long)]
     pub pers: Option<PathBuf>,
-    /// Fail a wait that would go beyond this robot time (seconds).
-    #[arg(long, default_value_t = 86_400.0)]
+    /// Fail a wait that would go beyond this robot time (seconds, more than 0 and at most
+    /// 1e9; wall seconds with --realtime).
+    #[arg(long, value_name = "S", default_value_t = 86_400.0, value_parser = num::max_time)]
     pub max_time: f64,
-    /// Abort after this many executed statements.
-    #[arg(long)]
+    /// Abort after this many executed statements (at least 1).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: Option<u64>,
-    /// Run the entry routine this many times; `ExitCycle` ends a cycle early.
-    #[arg(long, default_value_t = 1)]
+    /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub cycles: u32,
     /// Robot model (see `rapidvc robots`).
     #[arg(long, value_name = "NAME", default_value = "IRB 2600-12/1.85")]
@@ -72,12 +74,35 @@ pub struct RunArgs {
     /// Run in real time (a motion thread at the fixed period) instead of virtual time.
     #[arg(long)]
     pub realtime: bool,
-    /// Motion cycle in milliseconds.
-    #[arg(long, value_name = "MS", default_value_t = 4.0)]
+    /// Motion cycle in milliseconds (0.1 to 100).
+    #[arg(long, value_name = "MS", default_value_t = 4.0, value_parser = num::period_ms)]
     pub period: f64,
     /// EGM: devices, message log, lockstep.
     #[command(flatten)]
     pub egm: egm::EgmArgs,
+}
+
+/// The durations the numeric options give a run (the value parsers bound the options, so
+/// these conversions cannot overflow).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Timing {
+    /// The motion cycle (`--period`).
+    pub period: Duration,
+    /// The longest wait (`--max-time`).
+    pub max_wait: Duration,
+    /// Lockstep: the longest wait for one sensor reply (`--lockstep-timeout`).
+    pub reply_timeout: Duration,
+}
+
+impl RunArgs {
+    /// The run's durations from its options.
+    pub fn timing(&self) -> Timing {
+        Timing {
+            period: Duration::from_secs_f64(self.period / 1e3),
+            max_wait: Duration::from_secs_f64(self.max_time),
+            reply_timeout: Duration::from_millis(self.egm.lockstep_timeout),
+        }
+    }
 }
 
 /// `--start J1,J2,J3,J4,J5,J6` (brackets allowed: `[0,0,0,0,30,0]`).
@@ -109,43 +134,73 @@ impl FromStr for StartArg {
 
 /// Run the program.
 pub fn run(args: RunArgs) -> ExitCode {
+    // Installed first: a Ctrl-C while loading ends nothing half-written, and one during the
+    // run stops the program as a controller would.
+    let interrupted = match interrupt::install() {
+        Ok(flag) => flag,
+        Err(e) => {
+            eprintln!("warning: Ctrl-C will end the run without finishing its files: {e}");
+            Arc::new(AtomicBool::new(false))
+        }
+    };
     let loaded = program::load(&args.files, args.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
     let Some(prog) = loaded.program.clone() else {
         return ExitCode::from(2);
     };
+    let prepared = match before_the_run(&args, &prog) {
+        Ok(p) => p,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
+    if interrupted.load(Ordering::Relaxed) {
+        eprintln!("interrupted before the program started");
+        return ExitCode::from(interrupt::EXIT_INTERRUPTED);
+    }
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm::uses_egm(&prog, &sources);
-    let (ctl, egm_controller) =
-        match start_controller(&args, &sources, &loaded.config, &signals, uses_egm) {
-            Ok(c) => c,
-            Err(msg) => {
-                eprintln!("error: {msg}");
-                return ExitCode::from(2);
-            }
-        };
+    let started = start_controller(
+        &args,
+        &sources,
+        &loaded.config,
+        &signals,
+        uses_egm.then_some(&prepared.devices),
+    );
+    let (ctl, egm_controller, egm_log_written, outside_inputs) = match started {
+        Ok(c) => c,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
         .with_max_time(args.max_time)
+        .with_outside_inputs(outside_inputs)
+        .with_stop_request(Arc::clone(&interrupted))
         .with_lines(Arc::clone(&sources))
         .with_sink(print_output);
     let mut it = Interp::new(prog, &registry, Box::new(host));
     it.set_budget(args.max_steps);
+    it.set_stop_request(Arc::clone(&interrupted));
     // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
     it.set_stack_budget(6 << 20);
-    let mut kept = Vec::new();
     let (mut code, drain) = match it.init() {
         Err(e) => {
             render::runtime_error(&e, &sources);
             (ExitCode::from(1), false)
         }
         Ok(()) => {
-            match load_pers(&args, &mut it) {
-                Ok(k) => kept = k,
-                Err(c) => return c,
+            if let Some(stored) = &prepared.pers {
+                let (_, warnings) = it.load_persistents(&stored.entries);
+                for w in warnings {
+                    eprintln!("warning: {}: {w}", stored.path.display());
+                }
             }
             run_cycles(&args, &mut it, &sources)
         }
@@ -159,6 +214,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         eprintln!("error: {e}");
         code = ExitCode::from(1);
     }
+    let was_interrupted = interrupted.load(Ordering::Relaxed);
     let announce = args.trace.is_some() || args.plot.is_some() || args.realtime;
     if let Some(host) = it
         .host_mut()
@@ -169,7 +225,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         let egm_controller = host.take_egm();
         match host.finish(drain) {
             Ok(summary) => {
-                if moved || announce {
+                if moved || announce || was_interrupted {
                     print_summary(&summary);
                 }
             }
@@ -179,26 +235,159 @@ pub fn run(args: RunArgs) -> ExitCode {
             }
         }
         if let Some(e) = egm_controller
-            && let Err(msg) = egm::finish(e, &args.egm)
+            && let Err(msg) = egm::finish(e, &args.egm, egm_log_written)
         {
             eprintln!("error: {msg}");
             code = ExitCode::from(2);
         }
     }
     if let Some(path) = &args.pers {
-        let text = pers::write(&it.persistents(), &kept);
-        if let Err(e) = std::fs::write(path, text) {
-            eprintln!("error: cannot write {}: {e}", path.display());
+        let original = prepared.pers.as_ref().map(|p| p.text.as_str());
+        let text = pers::write(original, &it.persistents());
+        if let Err(e) = files::replace(path, &text) {
+            eprintln!(
+                "error: cannot write {}: {e} (the file was left as it was)",
+                path.display()
+            );
             return ExitCode::from(2);
         }
     }
+    if interrupted.load(Ordering::Relaxed) {
+        return ExitCode::from(interrupt::EXIT_INTERRUPTED);
+    }
     code
+}
+
+/// What is checked and read before anything runs.
+struct Prepared {
+    /// The `--pers` file as it was, when it exists.
+    pers: Option<StoredPers>,
+    /// The EGM devices the program sets up.
+    devices: egm::DeviceUse,
+}
+
+/// A `--pers` file read at the start.
+struct StoredPers {
+    path: PathBuf,
+    /// The whole text (rewritten in place at the end).
+    text: String,
+    entries: Vec<pers::PersEntry>,
+}
+
+/// Everything a run can refuse before it starts (exit 2, nothing ran): the entry procedure,
+/// the output paths, the `--pers` file, the `--device` names.
+fn before_the_run(args: &RunArgs, prog: &crate::ir::Program) -> Result<Prepared, String> {
+    if let Err(e) = Interp::entry_point(prog, &args.entry) {
+        return Err(format!(
+            "--entry {:?}: {}{}",
+            args.entry,
+            e.message,
+            entry_candidates(prog)
+        ));
+    }
+    check_paths(args)?;
+    let pers = match &args.pers {
+        Some(path) => read_pers(path)?,
+        None => None,
+    };
+    let devices = egm::device_use(prog);
+    for w in egm::check_devices(&args.egm, &devices)? {
+        eprintln!("warning: {w}");
+    }
+    Ok(Prepared { pers, devices })
+}
+
+/// " (procedures to start: main, calibrate)": the program's own procedures without required
+/// parameters.
+fn entry_candidates(prog: &crate::ir::Program) -> String {
+    let names: Vec<&str> = prog
+        .routines
+        .iter()
+        .filter(|r| {
+            r.kind == crate::ir::RoutineKind::Proc
+                && !r.local
+                && r.params.iter().all(|p| p.optional)
+                && prog
+                    .modules
+                    .get(r.module.0 as usize)
+                    .is_some_and(|m| !m.stdlib)
+        })
+        .map(|r| r.name.as_str())
+        .collect();
+    if names.is_empty() {
+        " (the program has no procedure without parameters)".to_string()
+    } else {
+        format!(" (procedures to start: {})", names.join(", "))
+    }
+}
+
+/// The run's outputs can be written, and none is an input of the run or another output.
+fn check_paths(args: &RunArgs) -> Result<(), String> {
+    let programs = crate::load::find_rapid_files(&args.files).unwrap_or_default();
+    let config_files: Vec<PathBuf> = program::config_dir(args.config.as_deref(), &args.files)
+        .map(|dir| {
+            ["EIO.cfg", "SIO.cfg", "MOC.cfg"]
+                .iter()
+                .filter_map(|f| crate::config::find_file(&dir, f))
+                .collect()
+        })
+        .unwrap_or_default();
+    let mut inputs: Vec<Role<'_>> = programs
+        .iter()
+        .map(|p| Role::new("the program file", p))
+        .chain(
+            config_files
+                .iter()
+                .map(|p| Role::new("the configuration file", p)),
+        )
+        .collect();
+    let mut outputs = Vec::new();
+    for (what, path) in [
+        ("--trace", &args.trace),
+        ("--plot", &args.plot),
+        ("--egm-log", &args.egm.egm_log),
+        ("--pers", &args.pers),
+    ] {
+        if let Some(p) = path {
+            outputs.push(Role::new(what, p));
+        }
+    }
+    if let Some(p) = &args.pers {
+        inputs.push(Role::new("--pers", p));
+    }
+    files::check_outputs(&inputs, &outputs)
+}
+
+/// Read and parse `--pers` (nothing when the file does not exist yet).
+fn read_pers(path: &Path) -> Result<Option<StoredPers>, String> {
+    if !path.exists() {
+        return Ok(None);
+    }
+    if !path.is_file() {
+        return Err(format!(
+            "--pers {}: not a regular file (the persistents file is replaced when the run ends)",
+            path.display()
+        ));
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let entries = pers::parse(&text).map_err(|e| {
+        format!(
+            "{}: {e} (the file is not used and stays as it is)",
+            path.display()
+        )
+    })?;
+    Ok(Some(StoredPers {
+        path: path.to_path_buf(),
+        text,
+        entries,
+    }))
 }
 
 /// Run the entry routine `--cycles` times. Returns the exit code and whether the robot may
 /// finish its queued moves (the program ended normally) or must stop where it is.
 fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode, bool) {
-    for _ in 0..args.cycles.max(1) {
+    for _ in 0..args.cycles {
         match it.run(&args.entry) {
             Ok(Outcome::Completed | Outcome::ExitCycle) => {}
             Ok(Outcome::Exited) => {
@@ -206,7 +395,12 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
                 return (ExitCode::SUCCESS, true);
             }
             Ok(Outcome::Stopped) => {
-                eprintln!("program stopped (Stop)");
+                progress_line::clear();
+                if it.stop_requested() {
+                    eprintln!("program stopped (interrupted by Ctrl-C)");
+                } else {
+                    eprintln!("program stopped (Stop)");
+                }
                 return (ExitCode::SUCCESS, false);
             }
             Err(e) => {
@@ -219,55 +413,23 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
     (ExitCode::SUCCESS, true)
 }
 
-/// Load `--pers` into the program's persistents; returns the entries the program does not
-/// declare (kept for writing back).
-fn load_pers(args: &RunArgs, it: &mut Interp) -> Result<Vec<pers::PersEntry>, ExitCode> {
-    let Some(path) = &args.pers else {
-        return Ok(Vec::new());
-    };
-    if !path.exists() {
-        return Ok(Vec::new());
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        eprintln!("error: cannot read {}: {e}", path.display());
-        ExitCode::from(2)
-    })?;
-    let entries = pers::parse(&text).map_err(|e| {
-        eprintln!("error: {}: {e}", path.display());
-        ExitCode::from(2)
-    })?;
-    let (unknown, warnings) = it.load_persistents(&entries);
-    for w in warnings {
-        eprintln!("warning: {}: {w}", path.display());
-    }
-    Ok(unknown)
-}
-
 /// The controller of this run: robot, period, start position, clock, trace and plot, and its
 /// EGM side (devices, clock choice, report feed, `--egm-log`).
+/// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
+/// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
+/// program sets up, `None` when it uses no EGM.
 fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
     signals: &Arc<crate::io::SignalTable>,
-    uses_egm: bool,
-) -> Result<(ControllerHandle, EgmController), String> {
-    let period_ms = args.period;
-    let (lo, hi) = (
-        PERIOD_RANGE.0.as_secs_f64() * 1e3,
-        PERIOD_RANGE.1.as_secs_f64() * 1e3,
-    );
-    if !(lo..=hi).contains(&period_ms) {
-        return Err(format!(
-            "--period {period_ms}: the motion cycle must lie between {lo} and {hi} ms"
-        ));
+    egm_devices: Option<&egm::DeviceUse>,
+) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
+    let uses_egm = egm_devices.is_some();
+    if args.egm.egm_log.is_some() && !uses_egm {
+        eprintln!("note: --egm-log: the program uses no EGM; no log is written");
     }
-    if !(args.max_time.is_finite() && args.max_time > 0.0) {
-        return Err(format!(
-            "--max-time {}: must be a positive number of seconds",
-            args.max_time
-        ));
-    }
+    let timing = args.timing();
     let mut sinks: Vec<Box<dyn TickSink>> = Vec::new();
     let mut feed = Feed::new();
     if let Some(path) = &args.trace {
@@ -301,17 +463,24 @@ fn start_controller(
     let robot = Robot::new(args.robot.0);
     let mut config = ControllerConfig::new(robot.clone(), start);
     config.core = CoreConfig {
-        period: Duration::from_secs_f64(period_ms / 1e3),
+        period: timing.period,
         ..CoreConfig::default()
     };
-    config.max_wait = Duration::from_secs_f64(args.max_time);
+    config.max_wait = timing.max_wait;
     if args.egm.lockstep && args.realtime {
         return Err("--lockstep keeps virtual time; it cannot be combined with --realtime".into());
     }
     let feed = (!feed.is_unused()).then_some(feed);
-    let prepared = args
-        .egm
-        .prepare(cfg, &robot, Arc::clone(signals), config.core.period, feed)?;
+    let prepared = args.egm.prepare(
+        cfg,
+        &robot,
+        Arc::clone(signals),
+        config.core.period,
+        feed,
+        egm_devices,
+    )?;
+    let log_written = prepared.log_written;
+    let outside_inputs = args.egm.lockstep && !prepared.external.is_empty();
     let realtime = args.realtime || (uses_egm && prepared.needs_realtime);
     if realtime && !args.realtime {
         progress_line::clear();
@@ -324,7 +493,7 @@ fn start_controller(
     let egm_controller = prepared.controller;
     if !realtime {
         return ControllerHandle::start_with_hook(config, sinks, hook)
-            .map(|c| (c, egm_controller))
+            .map(|c| (c, egm_controller, log_written, outside_inputs))
             .map_err(|e| start_error(&e));
     }
     // Real time: SCHED_FIFO when the system grants it, else normal priority.
@@ -340,7 +509,7 @@ fn start_controller(
         Err(e) => return Err(start_error(&e)),
     }
     ControllerHandle::start_with_hook(config, sinks, hook)
-        .map(|c| (c, egm_controller))
+        .map(|c| (c, egm_controller, log_written, false))
         .map_err(|e| start_error(&e))
 }
 

@@ -6,6 +6,8 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 
+use super::num;
+
 /// Prints a line to stdout, ignoring a closed pipe (`rapidvc sensor | head` must not panic).
 macro_rules! say {
     ($($arg:tt)*) => {{
@@ -49,32 +51,32 @@ pub struct SensorArgs {
     /// Sine axis: 1..6 (joint mode) or x, y, z (pose mode).
     #[arg(long)]
     pub axis: Option<String>,
-    /// Sine amplitude (degrees or mm).
-    #[arg(long, allow_hyphen_values = true)]
+    /// Sine amplitude (degrees or mm, ±1e6 at most).
+    #[arg(long, allow_hyphen_values = true, value_parser = num::sensor_offset)]
     pub amplitude: Option<f64>,
-    /// Frequency of sine, circle and path-correction sine, Hz.
-    #[arg(long)]
+    /// Frequency of sine, circle and path-correction sine, Hz (0 to 1000).
+    #[arg(long, value_parser = num::sensor_frequency)]
     pub frequency: Option<f64>,
-    /// Circle radius, mm.
-    #[arg(long)]
+    /// Circle radius, mm (0 to 1e6).
+    #[arg(long, value_parser = num::sensor_radius)]
     pub radius: Option<f64>,
-    /// Path correction y, mm.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Path correction y, mm (±1e6 at most).
+    #[arg(long, allow_hyphen_values = true, value_parser = num::sensor_offset)]
     pub y: Option<f64>,
-    /// Path correction z, mm.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Path correction z, mm (±1e6 at most).
+    #[arg(long, allow_hyphen_values = true, value_parser = num::sensor_offset)]
     pub z: Option<f64>,
-    /// Path-correction ramp time, s.
-    #[arg(long)]
+    /// Path-correction ramp time, s (more than 0, at most 1e6).
+    #[arg(long, value_parser = num::sensor_ramp_time)]
     pub ramp_time: Option<f64>,
     /// Do not send the pattern's speed as `speedRef`.
     #[arg(long)]
     pub no_speed_ref: bool,
-    /// Exit after this many received messages.
-    #[arg(long)]
+    /// Exit after this many received messages (at least 1).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub count: Option<u64>,
-    /// Exit after this many seconds.
-    #[arg(long)]
+    /// Exit after this many seconds (more than 0, at most 1e9).
+    #[arg(long, value_parser = num::sensor_duration)]
     pub duration: Option<f64>,
     /// Print one line per this many messages (0: only the summary).
     #[arg(long, default_value_t = 250)]
@@ -102,12 +104,6 @@ pub fn run(args: SensorArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    if let Some(d) = args.duration
-        && !(d.is_finite() && d > 0.0)
-    {
-        eprintln!("error: --duration must be a positive number of seconds");
-        return ExitCode::from(2);
-    }
     let runtime = match tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()

@@ -24,8 +24,9 @@ pub struct TestArgs {
     /// Only run tests whose name contains this text (case-insensitive).
     #[arg(long)]
     pub filter: Option<String>,
-    /// Abort a test after this many executed statements.
-    #[arg(long, default_value_t = 50_000_000)]
+    /// Abort a test after this many executed statements (at least 1).
+    #[arg(long, value_name = "N", default_value_t = 50_000_000,
+          value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
 }
 

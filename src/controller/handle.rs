@@ -4,6 +4,9 @@
 //! motion core itself, so robot time advances only while the program waits; in real time a
 //! motion thread runs the cycles and the handle waits on its published state.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::TrySendError;
 use std::time::Duration;
 
 use crate::motion::{
@@ -36,6 +39,8 @@ pub struct ControllerHandle {
     wall: MonotonicClock,
     max_wait: Duration,
     period: Duration,
+    /// Set from outside (Ctrl-C): a submit blocked on a full queue gives up.
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl std::fmt::Debug for ControllerHandle {
@@ -102,7 +107,14 @@ impl ControllerHandle {
             wall: MonotonicClock::new(),
             max_wait: config.max_wait,
             period: core_config.period,
+            interrupt: None,
         })
+    }
+
+    /// Make [`Self::submit`] give up with [`ControllerError::Interrupted`] instead of waiting
+    /// for room in a full queue once `flag` turns true.
+    pub fn set_interrupt(&mut self, flag: Arc<AtomicBool>) {
+        self.interrupt = Some(flag);
     }
 
     /// The robot.
@@ -180,10 +192,17 @@ impl ControllerHandle {
     /// until there is room). A move that cannot be executed is refused here, before the robot
     /// moves, with its ABB event ([`MotionError::event`]).
     pub fn submit(&mut self, cmd: MotionCommand) -> Result<(), ControllerError> {
+        let interrupt = self.interrupt.clone();
         match &mut self.driver {
             Driver::Virtual(v) => {
                 let mut cmd = cmd;
                 loop {
+                    if interrupt
+                        .as_ref()
+                        .is_some_and(|f| f.load(Ordering::Relaxed))
+                    {
+                        return Err(ControllerError::Interrupted);
+                    }
                     match v.core.enqueue(cmd) {
                         Ok(()) => {
                             while let Some(e) = v.core.take_event() {
@@ -253,8 +272,33 @@ impl ControllerHandle {
                         "the motion thread has stopped".into(),
                     ));
                 };
-                tx.send(planned.segment)
-                    .map_err(|_| ControllerError::Thread("the motion thread has stopped".into()))?;
+                // The queue is full while the channel holds a segment: wait for the motion
+                // thread to take it, unless the run is interrupted meanwhile.
+                let mut segment = planned.segment;
+                loop {
+                    match tx.try_send(segment) {
+                        Ok(()) => break,
+                        Err(TrySendError::Full(s)) => {
+                            if interrupt
+                                .as_ref()
+                                .is_some_and(|f| f.load(Ordering::Relaxed))
+                            {
+                                return Err(ControllerError::Interrupted);
+                            }
+                            segment = s;
+                            let guard = r.published();
+                            let _ = r
+                                .shared
+                                .changed
+                                .wait_timeout(guard, Duration::from_millis(20));
+                        }
+                        Err(TrySendError::Disconnected(_)) => {
+                            return Err(ControllerError::Thread(
+                                "the motion thread has stopped".into(),
+                            ));
+                        }
+                    }
+                }
                 r.submitted += 1;
                 Ok(())
             }

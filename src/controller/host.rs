@@ -11,6 +11,7 @@ mod egm;
 mod events;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAreaMode, no_robot};
@@ -59,6 +60,11 @@ pub struct ControllerHost {
     egm: Option<EgmController>,
     /// What the last move handed to the controller was (EGM movements need a stop point).
     last_move: LastMove,
+    /// Set from outside (Ctrl-C): waits end at once so the program can stop.
+    stop: Option<Arc<AtomicBool>>,
+    /// Something outside the program takes part in a virtual run (an external sensor in
+    /// lockstep), so a wait may end for reasons the program does not control.
+    outside_inputs: bool,
 }
 
 impl std::fmt::Debug for ControllerHost {
@@ -88,7 +94,33 @@ impl ControllerHost {
             program_time: 0.0,
             egm: None,
             last_move: LastMove::None,
+            stop: None,
+            outside_inputs: false,
         }
+    }
+
+    /// End every wait as soon as `flag` turns true (the interpreter, given the same flag,
+    /// then stops the program), and skip the final drain of queued moves.
+    pub fn with_stop_request(mut self, flag: Arc<AtomicBool>) -> Self {
+        if let Some(ctl) = self.ctl.as_mut() {
+            ctl.set_interrupt(Arc::clone(&flag));
+        }
+        self.stop = Some(flag);
+        self
+    }
+
+    /// Say that something outside the program takes part in the run even in virtual time
+    /// (an external EGM sensor in lockstep): the time-limit error then does not claim that
+    /// nothing could end the wait.
+    pub fn with_outside_inputs(mut self, outside: bool) -> Self {
+        self.outside_inputs = outside;
+        self
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.stop
+            .as_ref()
+            .is_some_and(|f| f.load(Ordering::Relaxed))
     }
 
     /// Run EGM instructions with `egm` (whose cycle hook runs in this host's controller).
@@ -156,8 +188,18 @@ impl ControllerHost {
             .ctl
             .take()
             .ok_or_else(|| ControllerError::Thread("the controller was already finished".into()))?;
+        let stop = self.stop.clone();
+        let stopped = move || stop.as_ref().is_some_and(|f| f.load(Ordering::Relaxed));
+        let drain = drain && !stopped();
         if drain {
-            match ctl.wait_until(Condition::InPos) {
+            let cond = if self.stop.is_some() {
+                Condition::Predicate(Box::new(move |s: &MotionState| {
+                    s.in_position() || stopped()
+                }))
+            } else {
+                Condition::InPos
+            };
+            match ctl.wait_until(cond) {
                 Ok(_) | Err(ControllerError::NeverSatisfied(_)) => {}
                 Err(ControllerError::Stopped(_)) => {}
                 Err(e) => return Err(e),
@@ -267,9 +309,12 @@ impl Host for ControllerHost {
         };
         let start = self.state_checked()?;
         let now = self.now();
+        if self.stop_requested() {
+            return Ok(now);
+        }
         if beyond_limit && now >= target {
             let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
-            return Err(HostError::fatal(if realtime {
+            return Err(HostError::fatal(if realtime || self.outside_inputs {
                 format!(
                     "the program waits beyond the time limit of {target} s \
                      (use --max-time to raise it)"
@@ -284,6 +329,7 @@ impl Host for ControllerHost {
         if target <= now {
             return Ok(now);
         }
+        let stop = self.stop.clone();
         let ctl = self.ctl()?;
         let until = RobotTime::from_secs_f64(target);
         // Virtual time stops on the last cycle at or before the deadline (the program's clock
@@ -295,7 +341,9 @@ impl Host for ControllerHost {
         };
         let reached = move |s: &MotionState| s.setpoint.time.saturating_add(lead) >= until;
         let cond = Condition::Predicate(Box::new(move |s: &MotionState| {
-            reached(s) || motion_changed(&start, s)
+            reached(s)
+                || motion_changed(&start, s)
+                || stop.as_ref().is_some_and(|f| f.load(Ordering::Relaxed))
         }));
         let result = ctl.wait_until(cond);
         self.pump_events();

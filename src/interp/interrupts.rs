@@ -344,6 +344,9 @@ impl Interp {
             f.at = span;
         }
         loop {
+            if self.stop_requested() {
+                return Err(Unwind::Stop);
+            }
             if let Some(c) = cond.as_mut()
                 && c(self, p)?
             {

@@ -365,6 +365,9 @@ impl Interp {
     #[cold]
     #[inline(never)]
     pub(crate) fn poll(&mut self, p: &Program, span: Span) -> Exec<()> {
+        if self.stop_requested() {
+            return Err(Unwind::Stop);
+        }
         if let Some(b) = self.budget
             && self.steps > b
         {
