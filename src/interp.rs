@@ -209,7 +209,8 @@ impl Interp {
         self.host
     }
 
-    /// Limit the number of statements executed (an operation budget); `None` = unlimited.
+    /// Limit the number of steps executed (an operation budget: every statement and every
+    /// loop iteration is a step); `None` = unlimited.
     pub fn set_budget(&mut self, max_statements: Option<u64>) {
         self.budget = max_statements;
         self.update_poll();

@@ -90,6 +90,12 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
     }
 }
 
+/// The head of a FOR statement at `span` (`FOR i FROM a TO b [STEP c]`), where each
+/// iteration is counted against the budget.
+pub(crate) fn loop_head(span: Span, to: &crate::ir::Expr, step: Option<&crate::ir::Expr>) -> Span {
+    span.start_point().merge(step.unwrap_or(to).span)
+}
+
 /// What statement compilation needs to know about the routine.
 struct Cx<'p> {
     p: &'p Program,
@@ -137,11 +143,14 @@ impl Cx<'_> {
                 })
             }
             StmtKind::While { cond, body } => {
+                let cond_span = cond.span;
                 let cond = cond::cond(p, cond);
                 let body = self.block(body);
+                let head = s.span.start_point().merge(cond_span);
                 Box::new(move |it, c| {
                     while cond(it, c)? {
                         it.exec_cblock(c, &body)?;
+                        it.step(&c.prog, head)?;
                     }
                     Ok(())
                 })
@@ -160,6 +169,7 @@ impl Cx<'_> {
                     step: step.as_ref().map(|e| (num::num(p, e), e.span)),
                     body: self.block(body),
                     span: s.span,
+                    head: loop_head(s.span, to, step.as_ref()),
                 };
                 Box::new(move |it, c| it.exec_cfor(c, &f))
             }

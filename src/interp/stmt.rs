@@ -24,10 +24,7 @@ impl Interp {
         let mut retries = 0u32;
         while i < n {
             let s = &b.stmts[i];
-            self.steps += 1;
-            if self.steps >= self.next_poll {
-                self.poll(p, s.span)?;
-            }
+            self.step(p, s.span)?;
             let r = match &s.kind {
                 StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
                 _ => self.exec_stmt(p, s),
@@ -118,8 +115,10 @@ impl Interp {
                 }
             }
             StmtKind::While { cond, body } => {
+                let head = s.span.start_point().merge(cond.span);
                 while self.eval_bool(p, cond)? {
                     self.exec_block(p, body)?;
+                    self.step(p, head)?;
                 }
                 Ok(())
             }
@@ -251,6 +250,7 @@ impl Interp {
             ));
         }
         let idx = self.bases().0 + slot as usize;
+        let head = super::compile::loop_head(span, to, step);
         let mut i = a;
         while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
             match self.stack.get_mut(idx) {
@@ -259,6 +259,7 @@ impl Interp {
                 None => {}
             }
             self.exec_block(p, body)?;
+            self.step(p, head)?;
             let next = i + st;
             if next == i {
                 return Err(self.error(
@@ -356,6 +357,19 @@ impl Interp {
         }
     }
 
+    /// Count one step at `span` against the budget, taking the slow path (budget, hook,
+    /// interrupts) when it is due. Every statement and every loop iteration is a step (at
+    /// the loop's head), so a loop with an empty body (`WHILE TRUE DO ENDWHILE`) still ends
+    /// at the budget.
+    #[inline(always)]
+    pub(crate) fn step(&mut self, p: &Program, span: Span) -> Exec<()> {
+        self.steps += 1;
+        if self.steps >= self.next_poll {
+            self.poll(p, span)?;
+        }
+        Ok(())
+    }
+
     /// The per-statement slow path (for callers outside `exec_block`).
     pub(crate) fn poll_at(&mut self, p: &Program, span: Span) -> Exec<()> {
         self.poll(p, span)
@@ -371,7 +385,7 @@ impl Interp {
             return Err(self.fatal(
                 ErrorKind::Aborted,
                 span,
-                format!("the operation budget of {b} statements is exhausted"),
+                format!("the operation budget of {b} steps is exhausted"),
             ));
         }
         if let Some(mut h) = self.hook.take() {

@@ -17,6 +17,8 @@ pub(crate) struct CFor {
     pub step: Option<(NumFn, Span)>,
     pub body: CBlock,
     pub span: Span,
+    /// `FOR i FROM a TO b [STEP c]`: where an iteration is counted.
+    pub head: Span,
 }
 
 /// A compiled TEST: the subject and case values as lowered, the bodies compiled.
@@ -35,10 +37,7 @@ impl Interp {
         let mut retries = 0u32;
         while i < n {
             let s = &b.stmts[i];
-            self.steps += 1;
-            if self.steps >= self.next_poll {
-                self.poll(&c.prog, s.span)?;
-            }
+            self.step(&c.prog, s.span)?;
             match (s.run)(self, c) {
                 Ok(()) => {
                     i += 1;
@@ -85,6 +84,7 @@ impl Interp {
                 None => {}
             }
             self.exec_cblock(c, &f.body)?;
+            self.step(&c.prog, f.head)?;
             let next = i + st;
             if next == i {
                 return Err(self.error(
