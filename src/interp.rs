@@ -142,6 +142,10 @@ pub struct Interp {
     hook: Option<StmtHook>,
     /// Set when the host (a test, a debugger) asked for a stop.
     initialised: bool,
+    /// Values held by module data, and by module data plus every call in progress
+    /// ([`crate::ir::limits`]).
+    module_values: u64,
+    data_values: u64,
 }
 
 impl std::fmt::Debug for Interp {
@@ -158,6 +162,14 @@ impl Interp {
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
         let natives = registry.impls_for(&prog.natives);
         let code = Arc::new(compile::Code::new(prog.clone()));
+        // What the semantic pass counted as module data (predefined data is not RAPID
+        // memory).
+        let module_values = prog
+            .globals
+            .iter()
+            .filter(|g| matches!(g.origin, GlobalOrigin::Module(_)))
+            .map(|g| prog.types.values(g.ty, &g.dims))
+            .fold(0u64, u64::saturating_add);
         Interp {
             prog,
             code,
@@ -186,6 +198,8 @@ impl Interp {
             budget: None,
             hook: None,
             initialised: false,
+            module_values,
+            data_values: module_values,
         }
     }
 
@@ -299,6 +313,7 @@ impl Interp {
         }
         let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
         let res = self.call_routine(&prog, rid, &args, r.head_span);
+        self.data_values = self.module_values;
         self.frames.clear();
         self.stack.clear();
         self.sp = 0;

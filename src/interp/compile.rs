@@ -39,9 +39,44 @@ pub(crate) struct Code {
 pub(crate) struct CRoutine {
     /// Its statements.
     pub body: CBlock,
+    /// What a call adds to the task's data.
+    pub frame: FrameData,
     /// For a simple `FUNC num` (see [`Routine::simple`]): the returned expression and the
     /// span of the `RETURN` statement.
     pub ret_num: Option<(NumFn, Span)>,
+}
+
+/// What a call of a routine adds to the task's data, in values ([`crate::ir::limits`]).
+pub(crate) struct FrameData {
+    /// Routine data and the value parameters that are not arrays.
+    pub fixed: u64,
+    /// Array value parameters (their size is the argument's): value slot and values per
+    /// element.
+    pub arrays: Box<[(u32, u64)]>,
+}
+
+impl FrameData {
+    fn of(p: &Program, r: &Routine) -> FrameData {
+        let mut fixed = r
+            .locals
+            .iter()
+            .map(|l| p.types.values(l.ty, &l.dims))
+            .fold(0u64, u64::saturating_add);
+        let mut arrays = Vec::new();
+        for param in &r.params {
+            if let crate::ir::ParamSlot::Value(slot) = param.slot {
+                if param.ty.rank > 0 {
+                    arrays.push((slot, p.types.values(param.ty.elem(), &[])));
+                } else {
+                    fixed = fixed.saturating_add(p.types.values(param.ty, &[]));
+                }
+            }
+        }
+        FrameData {
+            fixed,
+            arrays: arrays.into(),
+        }
+    }
 }
 
 /// A compiled statement list with the labels defined directly in it.
@@ -86,6 +121,7 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
     };
     CRoutine {
         body: cx.block(&r.body),
+        frame: FrameData::of(p, r),
         ret_num,
     }
 }
