@@ -223,8 +223,8 @@ impl Interp {
         self.host
     }
 
-    /// Limit the number of steps executed (an operation budget: every statement and every
-    /// loop iteration is a step); `None` = unlimited.
+    /// Limit the number of steps executed (an operation budget: every statement is a step,
+    /// and so is every iteration of a loop with an empty body); `None` = unlimited.
     pub fn set_budget(&mut self, max_statements: Option<u64>) {
         self.budget = max_statements;
         self.update_poll();

@@ -182,14 +182,23 @@ impl Cx<'_> {
                 let cond_span = cond.span;
                 let cond = cond::cond(p, cond);
                 let body = self.block(body);
-                let head = s.span.start_point().merge(cond_span);
-                Box::new(move |it, c| {
-                    while cond(it, c)? {
-                        it.exec_cblock(c, &body)?;
-                        it.step(&c.prog, head)?;
-                    }
-                    Ok(())
-                })
+                if body.stmts.is_empty() {
+                    // No statement counts the iterations: the loop head does.
+                    let head = s.span.start_point().merge(cond_span);
+                    Box::new(move |it, c| {
+                        while cond(it, c)? {
+                            it.step(&c.prog, head)?;
+                        }
+                        Ok(())
+                    })
+                } else {
+                    Box::new(move |it, c| {
+                        while cond(it, c)? {
+                            it.exec_cblock(c, &body)?;
+                        }
+                        Ok(())
+                    })
+                }
             }
             StmtKind::For {
                 slot,

@@ -24,7 +24,10 @@ impl Interp {
         let mut retries = 0u32;
         while i < n {
             let s = &b.stmts[i];
-            self.step(p, s.span)?;
+            self.steps += 1;
+            if self.steps >= self.next_poll {
+                self.poll(p, s.span)?;
+            }
             let r = match &s.kind {
                 StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
                 _ => self.exec_stmt(p, s),
@@ -117,8 +120,11 @@ impl Interp {
             StmtKind::While { cond, body } => {
                 let head = s.span.start_point().merge(cond.span);
                 while self.eval_bool(p, cond)? {
-                    self.exec_block(p, body)?;
-                    self.step(p, head)?;
+                    if body.stmts.is_empty() {
+                        self.step(p, head)?;
+                    } else {
+                        self.exec_block(p, body)?;
+                    }
                 }
                 Ok(())
             }
@@ -258,8 +264,11 @@ impl Interp {
                 Some(v) => *v = Value::Num(i),
                 None => {}
             }
-            self.exec_block(p, body)?;
-            self.step(p, head)?;
+            if body.stmts.is_empty() {
+                self.step(p, head)?;
+            } else {
+                self.exec_block(p, body)?;
+            }
             let next = i + st;
             if next == i {
                 return Err(self.error(
@@ -358,10 +367,10 @@ impl Interp {
     }
 
     /// Count one step at `span` against the budget, taking the slow path (budget, hook,
-    /// interrupts) when it is due. Every statement and every loop iteration is a step (at
-    /// the loop's head), so a loop with an empty body (`WHILE TRUE DO ENDWHILE`) still ends
-    /// at the budget.
-    #[inline(always)]
+    /// interrupts) when it is due. Every statement is a step, and so is every iteration of
+    /// a loop whose body is empty (counted at the loop's head), so every loop iteration
+    /// counts and `WHILE TRUE DO ENDWHILE` ends at the budget too.
+    #[inline]
     pub(crate) fn step(&mut self, p: &Program, span: Span) -> Exec<()> {
         self.steps += 1;
         if self.steps >= self.next_poll {

@@ -17,7 +17,7 @@ pub(crate) struct CFor {
     pub step: Option<(NumFn, Span)>,
     pub body: CBlock,
     pub span: Span,
-    /// `FOR i FROM a TO b [STEP c]`: where an iteration is counted.
+    /// `FOR i FROM a TO b [STEP c]`: where an iteration of an empty body is counted.
     pub head: Span,
 }
 
@@ -37,7 +37,10 @@ impl Interp {
         let mut retries = 0u32;
         while i < n {
             let s = &b.stmts[i];
-            self.step(&c.prog, s.span)?;
+            self.steps += 1;
+            if self.steps >= self.next_poll {
+                self.poll(&c.prog, s.span)?;
+            }
             match (s.run)(self, c) {
                 Ok(()) => {
                     i += 1;
@@ -83,8 +86,11 @@ impl Interp {
                 Some(v) => *v = Value::Num(i),
                 None => {}
             }
-            self.exec_cblock(c, &f.body)?;
-            self.step(&c.prog, f.head)?;
+            if f.body.stmts.is_empty() {
+                self.step(&c.prog, f.head)?;
+            } else {
+                self.exec_cblock(c, &f.body)?;
+            }
             let next = i + st;
             if next == i {
                 return Err(self.error(
