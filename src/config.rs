@@ -71,19 +71,24 @@ impl Config {
     }
 }
 
-/// The path of `file_name` in `dir` or `dir/SYSPAR`, matching names case-insensitively.
+/// The path of `file_name` in `dir` or `dir/SYSPAR`, matching names case-insensitively. A
+/// file is preferred to a directory of the same name; a directory is returned when nothing
+/// else matches, so that [`load_file`] reports it instead of it being silently skipped.
 pub fn find_file(dir: &Path, file_name: &str) -> Option<PathBuf> {
-    let find_in = |d: &Path, want_dir: bool| -> Option<PathBuf> {
-        std::fs::read_dir(d).ok()?.flatten().find_map(|e| {
-            let path = e.path();
-            let matches = e
-                .file_name()
-                .to_string_lossy()
-                .eq_ignore_ascii_case(if want_dir { "SYSPAR" } else { file_name });
-            (matches && path.is_dir() == want_dir).then_some(path)
-        })
+    let find_in = |d: &Path, name: &str| -> Option<PathBuf> {
+        let mut found: Vec<PathBuf> = std::fs::read_dir(d)
+            .ok()?
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().eq_ignore_ascii_case(name))
+            .map(|e| e.path())
+            .collect();
+        found.sort_by_key(|p| p.is_dir());
+        found.into_iter().next()
     };
-    find_in(dir, false).or_else(|| find_in(&find_in(dir, true)?, false))
+    find_in(dir, file_name).or_else(|| {
+        let syspar = find_in(dir, "SYSPAR").filter(|p| p.is_dir())?;
+        find_in(&syspar, file_name)
+    })
 }
 
 /// Read one CFG file of domain `domain` (e.g. `EIO`): add it to `sources` and parse it.
@@ -95,6 +100,13 @@ pub fn load_file(
     sources: &mut SourceMap,
     diags: &mut Diagnostics,
 ) -> Option<cfg::CfgFile> {
+    if path.is_dir() {
+        diags.push(ConfigError::Io {
+            path: path.display().to_string(),
+            message: "it is a directory, not a configuration file".into(),
+        });
+        return None;
+    }
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => {

@@ -148,6 +148,10 @@ pub struct Interp {
     /// Set from outside (Ctrl-C) to stop the program as `Stop` does.
     stop: Option<Arc<AtomicBool>>,
     initialised: bool,
+    /// Values held by module data, and by module data plus every call in progress
+    /// ([`crate::ir::limits`]).
+    module_values: u64,
+    data_values: u64,
 }
 
 impl std::fmt::Debug for Interp {
@@ -164,6 +168,14 @@ impl Interp {
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
         let natives = registry.impls_for(&prog.natives);
         let code = Arc::new(compile::Code::new(prog.clone()));
+        // What the semantic pass counted as module data (predefined data is not RAPID
+        // memory).
+        let module_values = prog
+            .globals
+            .iter()
+            .filter(|g| matches!(g.origin, GlobalOrigin::Module(_)))
+            .map(|g| prog.types.values(g.ty, &g.dims))
+            .fold(0u64, u64::saturating_add);
         Interp {
             prog,
             code,
@@ -193,6 +205,8 @@ impl Interp {
             hook: None,
             stop: None,
             initialised: false,
+            module_values,
+            data_values: module_values,
         }
     }
 
@@ -216,7 +230,8 @@ impl Interp {
         self.host
     }
 
-    /// Limit the number of statements executed (an operation budget); `None` = unlimited.
+    /// Limit the number of steps executed (an operation budget: every statement is a step,
+    /// and so is every iteration of a loop with an empty body); `None` = unlimited.
     pub fn set_budget(&mut self, max_statements: Option<u64>) {
         self.budget = max_statements;
         self.update_poll();
@@ -305,6 +320,7 @@ impl Interp {
         let r = prog.routine(rid);
         let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
         let res = self.call_routine(&prog, rid, &args, r.head_span);
+        self.data_values = self.module_values;
         self.frames.clear();
         self.stack.clear();
         self.sp = 0;

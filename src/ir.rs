@@ -3,6 +3,7 @@
 //! run-time errors. Produced by `sema`, consumed by `interp`.
 
 pub mod errnum;
+pub mod limits;
 pub mod sig;
 pub mod types;
 

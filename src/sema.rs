@@ -11,6 +11,7 @@ mod collect;
 mod consteval;
 pub mod error;
 mod expr;
+mod limits;
 mod order;
 mod predef;
 mod stmt;
@@ -99,6 +100,7 @@ pub fn analyze_to_vec(
     c.collect_types();
     c.predefined_data(env);
     c.collect_globals();
+    c.check_module_data();
     c.collect_routines();
     c.check_native_signatures();
     c.lower_global_inits();
@@ -186,6 +188,8 @@ pub(crate) struct Checker<'a> {
     pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
     /// Routines with a placeholder parameter (their body stops the program).
     incomplete: std::collections::HashSet<usize>,
+    /// Values held by all module data ([`crate::ir::limits`]).
+    module_values: u64,
 }
 
 impl<'a> Checker<'a> {
@@ -218,6 +222,7 @@ impl<'a> Checker<'a> {
             const_state: HashMap::new(),
             pending_records: Vec::new(),
             incomplete: Default::default(),
+            module_values: 0,
         }
     }
 

@@ -166,6 +166,86 @@ fn json_diagnostics_point_into_the_file() {
     assert!(json.contains("\"severity\":\"warning\""));
 }
 
+/// A scratch directory of its own for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rapidvc-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// An `EIO.cfg` that is a directory is an error naming it, not silently skipped (also in
+/// the `SYSPAR` layout, and not hidden by a file of the same name in `SYSPAR`).
+#[test]
+fn eio_cfg_that_is_a_directory_is_an_error() {
+    for layout in ["", "SYSPAR"] {
+        let dir = scratch(&format!("eio-dir{layout}"));
+        let eio = dir.join(layout).join("EIO.cfg");
+        std::fs::create_dir_all(&eio).unwrap();
+        if layout.is_empty() {
+            // A real file further down must not hide the directory.
+            std::fs::create_dir_all(dir.join("SYSPAR")).unwrap();
+            std::fs::write(
+                dir.join("SYSPAR/EIO.cfg"),
+                "EIO:CFG_1.0:6:1::\n#\nEIO_SIGNAL:\n  -Name \"do1\" -SignalType \"DO\"\n",
+            )
+            .unwrap();
+        }
+        let mut map = SourceMap::new();
+        let mut diags = Diagnostics::new();
+        let cfg = config::load_dir(&dir, &mut map, &mut diags);
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(cfg.eio, None);
+        assert_eq!(diags.error_count(), 1, "{}", diags.render_plain(&map, 80));
+        let d = diags.iter().next().unwrap();
+        assert_eq!(d.code().unwrap().to_string(), "rapidvc::config::io");
+        assert_eq!(
+            d.to_string(),
+            format!(
+                "cannot read {}: it is a directory, not a configuration file",
+                eio.display()
+            )
+        );
+    }
+}
+
+/// 200,000 signals load (the duplicate check and the merge with the built-in signals are
+/// hash look-ups; they were a linear search per signal, which took minutes for this file).
+/// Timing is measured by `cargo bench --bench config`, not here.
+#[test]
+fn eio_with_200k_signals_loads_every_signal() {
+    const N: usize = 200_000;
+    let dir = scratch("eio-200k");
+    let mut text = String::from("EIO:CFG_1.0:6:1::\n#\nEIO_SIGNAL:\n");
+    for i in 0..N {
+        text.push_str(&format!("  -Name \"sig_{i}\" -SignalType \"DO\"\n"));
+    }
+    // One duplicate (other case) at the end, and one that replaces a built-in signal.
+    text.push_str("  -Name \"SIG_0\" -SignalType \"DI\"\n");
+    text.push_str("  -Name \"AO_MOVEX\" -SignalType \"AO\" -MinLog -1 -MaxLog 1\n");
+    std::fs::write(dir.join("EIO.cfg"), text).unwrap();
+    let mut map = SourceMap::new();
+    let mut diags = Diagnostics::new();
+    let cfg = config::load_dir(&dir, &mut map, &mut diags);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(diags.len(), 1);
+    let dup = diags.iter().next().unwrap();
+    assert_eq!(
+        dup.code().unwrap().to_string(),
+        "rapidvc::config::duplicate_signal"
+    );
+    assert_eq!(cfg.eio.as_ref().unwrap().signals.len(), N + 1);
+    let table = cfg.signal_table().unwrap();
+    // The built-ins, one of them replaced, plus the file's signals.
+    assert_eq!(table.len(), 6 + N);
+    let first = table.lookup("sig_0").unwrap();
+    assert_eq!(table.def(first).unwrap().kind, SignalKind::Do);
+    let last = table.lookup("SIG_199999").unwrap();
+    assert_eq!(last.index(), 6 + N - 1);
+    let ao = table.def(table.lookup("ao_movex").unwrap()).unwrap();
+    assert_eq!((ao.min_log, ao.max_log), (-1.0, 1.0));
+}
+
 #[test]
 fn config_error_is_a_rapid_diagnostic() {
     use rapidvc::diag::RapidDiagnostic;

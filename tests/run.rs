@@ -129,3 +129,99 @@ fn persistents_survive_between_runs() {
     assert!(err.contains("line 1"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `rapidvc ARGS…` in the crate root that must end by itself within `secs` seconds (a
+/// guard against hangs, not a speed check: it is killed and the test fails if it does not).
+fn run_guarded(args: &[&str], secs: u64) -> (i32, String, String) {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("COLUMNS", "80")
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start rapidvc");
+    let mut out_pipe = child.stdout.take().expect("stdout");
+    let mut err_pipe = child.stderr.take().expect("stderr");
+    let out_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = out_pipe.read_to_string(&mut s);
+        s
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err_pipe.read_to_string(&mut s);
+        s
+    });
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(secs);
+    let status = loop {
+        if let Some(st) = child.try_wait().expect("wait for rapidvc") {
+            break Some(st);
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            break None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let stdout = out_reader.join().unwrap_or_default();
+    let stderr = err_reader.join().unwrap_or_default();
+    let Some(status) = status else {
+        panic!("rapidvc {args:?} did not end within {secs} s (killed)\n{stdout}{stderr}");
+    };
+    (status.code().unwrap_or(-1), stdout, stderr)
+}
+
+/// Issue 10, item 7: a loop with an empty body counts against the statement budget, in
+/// compiled bodies and on the tree-walking path (ERROR handlers), for WHILE, FOR and GOTO.
+#[test]
+fn empty_loops_end_at_the_budget() {
+    let (code, out, err) = run_guarded(
+        &[
+            "test",
+            "--max-steps",
+            "1000",
+            "tests/fixtures/loops/empty_loops.mod",
+        ],
+        120,
+    );
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(out.ends_with("0 passed, 6 failed\n"), "{out}");
+    let exhausted = out
+        .matches("the operation budget of 1000 steps is exhausted")
+        .count();
+    assert_eq!(exhausted, 6, "{out}");
+
+    // `rapidvc test`'s default budget ends it too.
+    let (code, out, err) = run_guarded(
+        &[
+            "test",
+            "--filter",
+            "test_empty_while_in_handler",
+            "tests/fixtures/loops/empty_loops.mod",
+        ],
+        300,
+    );
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(
+        out.contains("the operation budget of 50000000 steps"),
+        "{out}"
+    );
+
+    // `run --max-steps` stops the program at the loop.
+    let (code, out, err) = run_guarded(
+        &[
+            "run",
+            "--max-steps",
+            "1000",
+            "tests/fixtures/loops/empty_while.mod",
+        ],
+        120,
+    );
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(err.contains("rapidvc::run::aborted"), "{err}");
+    assert!(err.contains("empty_while.mod:4:5"), "{err}");
+}

@@ -13,6 +13,10 @@ use crate::source::Span;
 /// Deepest call nesting before execution is aborted (a runaway recursion guard).
 pub(crate) const MAX_DEPTH: usize = 10_000;
 
+/// A frame holding more values than this is dropped from the value stack when its call
+/// returns, instead of staying in the slots kept for reuse.
+const BIG_FRAME_VALUES: u64 = 4096;
+
 /// An address on the current thread's stack (stacks grow down on every supported target).
 #[inline(always)]
 pub(crate) fn stack_addr() -> usize {
@@ -78,7 +82,16 @@ impl Interp {
         else {
             return self.call_num_general(p, rid, args, span);
         };
-        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
+        // A call with array arguments, or one the task's data cannot take, goes the general
+        // way (which counts the arrays, or raises ERR_DATA_LIMIT).
+        let values = match self.code.routines.get(rid.0 as usize) {
+            Some(cr) if cr.frame.arrays.is_empty() => cr.frame.fixed,
+            _ => u64::MAX,
+        };
+        if self.frames.len() >= MAX_DEPTH
+            || self.stack_exhausted()
+            || self.data_values.saturating_add(values) > crate::ir::limits::MAX_TASK_VALUES
+        {
             return self.call_num_general(p, rid, args, span);
         }
         let bp = self.sp;
@@ -118,6 +131,7 @@ impl Interp {
         });
         let saved = (self.bp, self.rbp);
         self.bp = bp;
+        self.data_values += values;
         self.steps += 1;
         let x = if self.steps >= self.next_poll {
             match self.poll_at(p, *st_span) {
@@ -130,6 +144,7 @@ impl Interp {
         } else {
             self.nf(p, body)
         };
+        self.data_values -= values;
         (self.bp, self.rbp) = saved;
         self.frames.pop();
         self.sp = bp;
@@ -188,8 +203,47 @@ impl Interp {
         self.enter(&code, rid, bp, rbp, span)
     }
 
+    /// Values a call of `rid` adds to the task's data, with its value arguments on the stack
+    /// from `bp` ([`crate::ir::limits`]).
+    fn frame_values(&self, c: &super::compile::Code, rid: RoutineId, bp: usize) -> u64 {
+        let Some(cr) = c.routines.get(rid.0 as usize) else {
+            return 0;
+        };
+        cr.frame
+            .arrays
+            .iter()
+            .fold(cr.frame.fixed, |n, &(slot, per_elem)| {
+                match self.stack.get(bp + slot as usize) {
+                    Some(Value::Array(a)) => {
+                        n.saturating_add((a.data.len() as u64).saturating_mul(per_elem))
+                    }
+                    _ => n,
+                }
+            })
+    }
+
+    /// `ERR_DATA_LIMIT` at `span` for a call of `r` that would add `n` values to the task.
+    pub(crate) fn data_limit_error(&self, r: &Routine, n: u64, span: Span) -> Unwind {
+        use crate::ir::limits::{MAX_TASK_VALUES, thousands};
+        self.error(
+            errnum::ERR_DATA_LIMIT,
+            span,
+            format!(
+                "calling `{}` needs {} values (its data and value arguments); with the module data ({}) and the {} routine calls in progress the task would hold {}, over its limit of {}",
+                r.name,
+                thousands(n),
+                thousands(self.module_values),
+                self.frames.len(),
+                thousands(self.data_values.saturating_add(n)),
+                thousands(MAX_TASK_VALUES)
+            ),
+        )
+    }
+
     /// Run routine `rid` (compiled) on a frame whose arguments are on the stacks from `bp`
-    /// and `rbp`, called at `span`; pops the frame.
+    /// and `rbp`, called at `span`; pops the frame. A call that would take the task's data
+    /// over [`crate::ir::limits::MAX_TASK_VALUES`] raises `ERR_DATA_LIMIT` at the call
+    /// instead (the caller's ERROR handler can take it).
     pub(crate) fn enter(
         &mut self,
         c: &super::compile::Code,
@@ -200,6 +254,15 @@ impl Interp {
     ) -> Exec<Value> {
         let p = &*c.prog;
         let r = p.routine(rid);
+        let values = self.frame_values(c, rid, bp);
+        if self.data_values.saturating_add(values) > crate::ir::limits::MAX_TASK_VALUES {
+            let e = self.data_limit_error(r, values, span);
+            self.stack.truncate(bp);
+            self.sp = bp;
+            self.refs.truncate(rbp);
+            return Err(e);
+        }
+        self.data_values += values;
         if let Some(f) = self.frames.last_mut() {
             f.at = span;
         }
@@ -223,6 +286,12 @@ impl Interp {
         self.frames.pop();
         self.sp = bp;
         self.refs.truncate(rbp);
+        self.data_values -= values;
+        if values > BIG_FRAME_VALUES {
+            // Free the frame's large data now (slots above the top are otherwise kept for
+            // reuse, and would keep it alive).
+            self.stack.truncate(bp);
+        }
         res
     }
 

@@ -39,9 +39,44 @@ pub(crate) struct Code {
 pub(crate) struct CRoutine {
     /// Its statements.
     pub body: CBlock,
+    /// What a call adds to the task's data.
+    pub frame: FrameData,
     /// For a simple `FUNC num` (see [`Routine::simple`]): the returned expression and the
     /// span of the `RETURN` statement.
     pub ret_num: Option<(NumFn, Span)>,
+}
+
+/// What a call of a routine adds to the task's data, in values ([`crate::ir::limits`]).
+pub(crate) struct FrameData {
+    /// Routine data and the value parameters that are not arrays.
+    pub fixed: u64,
+    /// Array value parameters (their size is the argument's): value slot and values per
+    /// element.
+    pub arrays: Box<[(u32, u64)]>,
+}
+
+impl FrameData {
+    fn of(p: &Program, r: &Routine) -> FrameData {
+        let mut fixed = r
+            .locals
+            .iter()
+            .map(|l| p.types.values(l.ty, &l.dims))
+            .fold(0u64, u64::saturating_add);
+        let mut arrays = Vec::new();
+        for param in &r.params {
+            if let crate::ir::ParamSlot::Value(slot) = param.slot {
+                if param.ty.rank > 0 {
+                    arrays.push((slot, p.types.values(param.ty.elem(), &[])));
+                } else {
+                    fixed = fixed.saturating_add(p.types.values(param.ty, &[]));
+                }
+            }
+        }
+        FrameData {
+            fixed,
+            arrays: arrays.into(),
+        }
+    }
 }
 
 /// A compiled statement list with the labels defined directly in it.
@@ -86,8 +121,15 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
     };
     CRoutine {
         body: cx.block(&r.body),
+        frame: FrameData::of(p, r),
         ret_num,
     }
+}
+
+/// The head of a FOR statement at `span` (`FOR i FROM a TO b [STEP c]`), where each
+/// iteration is counted against the budget.
+pub(crate) fn loop_head(span: Span, to: &crate::ir::Expr, step: Option<&crate::ir::Expr>) -> Span {
+    span.start_point().merge(step.unwrap_or(to).span)
 }
 
 /// What statement compilation needs to know about the routine.
@@ -137,14 +179,26 @@ impl Cx<'_> {
                 })
             }
             StmtKind::While { cond, body } => {
+                let cond_span = cond.span;
                 let cond = cond::cond(p, cond);
                 let body = self.block(body);
-                Box::new(move |it, c| {
-                    while cond(it, c)? {
-                        it.exec_cblock(c, &body)?;
-                    }
-                    Ok(())
-                })
+                if body.stmts.is_empty() {
+                    // No statement counts the iterations: the loop head does.
+                    let head = s.span.start_point().merge(cond_span);
+                    Box::new(move |it, c| {
+                        while cond(it, c)? {
+                            it.step(&c.prog, head)?;
+                        }
+                        Ok(())
+                    })
+                } else {
+                    Box::new(move |it, c| {
+                        while cond(it, c)? {
+                            it.exec_cblock(c, &body)?;
+                        }
+                        Ok(())
+                    })
+                }
             }
             StmtKind::For {
                 slot,
@@ -160,6 +214,7 @@ impl Cx<'_> {
                     step: step.as_ref().map(|e| (num::num(p, e), e.span)),
                     body: self.block(body),
                     span: s.span,
+                    head: loop_head(s.span, to, step.as_ref()),
                 };
                 Box::new(move |it, c| it.exec_cfor(c, &f))
             }

@@ -118,8 +118,13 @@ impl Interp {
                 }
             }
             StmtKind::While { cond, body } => {
+                let head = s.span.start_point().merge(cond.span);
                 while self.eval_bool(p, cond)? {
-                    self.exec_block(p, body)?;
+                    if body.stmts.is_empty() {
+                        self.step(p, head)?;
+                    } else {
+                        self.exec_block(p, body)?;
+                    }
                 }
                 Ok(())
             }
@@ -251,6 +256,7 @@ impl Interp {
             ));
         }
         let idx = self.bases().0 + slot as usize;
+        let head = super::compile::loop_head(span, to, step);
         let mut i = a;
         while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
             match self.stack.get_mut(idx) {
@@ -258,7 +264,11 @@ impl Interp {
                 Some(v) => *v = Value::Num(i),
                 None => {}
             }
-            self.exec_block(p, body)?;
+            if body.stmts.is_empty() {
+                self.step(p, head)?;
+            } else {
+                self.exec_block(p, body)?;
+            }
             let next = i + st;
             if next == i {
                 return Err(self.error(
@@ -356,6 +366,19 @@ impl Interp {
         }
     }
 
+    /// Count one step at `span` against the budget, taking the slow path (budget, hook,
+    /// interrupts) when it is due. Every statement is a step, and so is every iteration of
+    /// a loop whose body is empty (counted at the loop's head), so every loop iteration
+    /// counts and `WHILE TRUE DO ENDWHILE` ends at the budget too.
+    #[inline]
+    pub(crate) fn step(&mut self, p: &Program, span: Span) -> Exec<()> {
+        self.steps += 1;
+        if self.steps >= self.next_poll {
+            self.poll(p, span)?;
+        }
+        Ok(())
+    }
+
     /// The per-statement slow path (for callers outside `exec_block`).
     pub(crate) fn poll_at(&mut self, p: &Program, span: Span) -> Exec<()> {
         self.poll(p, span)
@@ -374,7 +397,7 @@ impl Interp {
             return Err(self.fatal(
                 ErrorKind::Aborted,
                 span,
-                format!("the operation budget of {b} statements is exhausted"),
+                format!("the operation budget of {b} steps is exhausted"),
             ));
         }
         if let Some(mut h) = self.hook.take() {

@@ -285,14 +285,25 @@ pub fn builtin_signals() -> Vec<SignalDef> {
 /// `base` with every definition of `overrides` added; an override replaces a base
 /// definition of the same name (case-insensitive), keeping the base's position.
 pub fn merge_defs(base: Vec<SignalDef>, overrides: Vec<SignalDef>) -> Vec<SignalDef> {
+    // Position of each name (ASCII case folded) in `out`: linear in the number of signals.
+    let mut at: std::collections::HashMap<String, usize> = base
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (d.name.to_ascii_lowercase(), i))
+        .collect();
     let mut out = base;
+    out.reserve(overrides.len());
     for o in overrides {
-        match out
-            .iter_mut()
-            .find(|d| d.name.eq_ignore_ascii_case(&o.name))
-        {
-            Some(slot) => *slot = o,
-            None => out.push(o),
+        match at.entry(o.name.to_ascii_lowercase()) {
+            std::collections::hash_map::Entry::Occupied(i) => {
+                if let Some(slot) = out.get_mut(*i.get()) {
+                    *slot = o;
+                }
+            }
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert(out.len());
+                out.push(o);
+            }
         }
     }
     out

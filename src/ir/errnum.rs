@@ -62,6 +62,7 @@ errs! {
     ERR_MAXINTVAL = 1012, "Integer value too large";
     ERR_INT_NOTVAL = 1013, "Not a valid integer";
     ERR_INT_MAXVAL = 1014, "Integer value outside the allowed range";
+    ERR_DATA_LIMIT = 1015, "Too much data in the task (module data and running routines)";
     ERR_NOTPRES = 1101, "Optional parameter not present";
     ERR_FNCNORET = 1102, "Function ended without RETURN";
     ERR_CALLPROC = 1103, "Procedure call error";

@@ -206,6 +206,44 @@ impl TypeTable {
         s
     }
 
+    /// How many values data of type `ty` holds ([`crate::ir::limits`]): one for each
+    /// `num`, `dnum`, `bool` and `string`, a record's components added up (at least one per
+    /// record), times the array sizes `dims` for an array. Saturates instead of overflowing.
+    pub fn values(&self, ty: Ty, dims: &[u32]) -> u64 {
+        let one = self.values_of(ty.base, 0);
+        if ty.rank == 0 {
+            return one;
+        }
+        dims.iter()
+            .fold(one, |acc, &n| acc.saturating_mul(u64::from(n)))
+    }
+
+    fn values_of(&self, id: TypeId, depth: u32) -> u64 {
+        // Records cannot contain themselves (the semantic pass reports and empties such a
+        // record), so the depth is the nesting of distinct records; the guard only keeps
+        // an unchecked table from recursing without end.
+        if depth > 64 {
+            return u64::MAX;
+        }
+        match &self.get(self.resolve(id)).kind {
+            TypeKind::Record { fields, .. } => fields
+                .iter()
+                .map(|f| {
+                    let one = self.values_of(f.ty.base, depth + 1);
+                    if f.ty.rank == 0 {
+                        one
+                    } else {
+                        f.dims
+                            .iter()
+                            .fold(one, |acc, &n| acc.saturating_mul(u64::from(n)))
+                    }
+                })
+                .fold(0u64, u64::saturating_add)
+                .max(1),
+            _ => 1,
+        }
+    }
+
     /// Number of types.
     pub fn len(&self) -> usize {
         self.defs.len()

@@ -3,6 +3,7 @@
 
 use std::fmt;
 
+use crate::robot::error::msg_num;
 use crate::robot::{ConfData, KinError};
 use crate::source::Span;
 
@@ -39,7 +40,7 @@ impl fmt::Display for PathPlace {
         match self {
             PathPlace::Target => f.write_str("at the target"),
             PathPlace::CirPoint => f.write_str("at the circle point"),
-            PathPlace::Along(s) => write!(f, "at {:.0} % of the path", s * 100.0),
+            PathPlace::Along(s) => write!(f, "at {} % of the path", msg_num(s * 100.0, Some(0))),
             PathPlace::Corner => f.write_str("in the corner path"),
             PathPlace::Cycle => f.write_str("while moving"),
         }
@@ -81,7 +82,10 @@ pub enum MotionError {
         reason: &'static str,
     },
     /// An axis would exceed its maximum speed (per-cycle supervision).
-    #[error("joint {joint} speed {speed:.1}°/s exceeds its maximum {max:.1}°/s")]
+    #[error(
+        "joint {joint} speed {}°/s exceeds its maximum {}°/s",
+        msg_num(*speed, Some(1)), msg_num(*max, Some(1))
+    )]
     JointSpeed {
         /// Axis number, 1-based.
         joint: usize,
@@ -91,7 +95,7 @@ pub enum MotionError {
         max: f64,
     },
     /// An argument of the move is not usable.
-    #[error("invalid {what}: {value}")]
+    #[error("invalid {what}: {}", msg_num(*value, None))]
     InvalidData {
         /// Which argument.
         what: &'static str,
@@ -271,5 +275,29 @@ impl EventLog {
     /// Events ever recorded (taken, pending or dropped).
     pub fn total(&self) -> u64 {
         self.total
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn huge_numbers_are_written_with_an_exponent() {
+        let e = MotionError::InvalidData {
+            what: "speeddata v_tcp (mm/s)",
+            value: 1e308,
+        };
+        assert_eq!(e.to_string(), "invalid speeddata v_tcp (mm/s): 1e308");
+        let e = MotionError::JointSpeed {
+            joint: 2,
+            speed: 3e38,
+            max: 175.0,
+        };
+        assert_eq!(
+            e.to_string(),
+            "joint 2 speed 3e38°/s exceeds its maximum 175.0°/s"
+        );
+        assert_eq!(PathPlace::Along(0.32).to_string(), "at 32 % of the path");
     }
 }

@@ -258,6 +258,7 @@ impl Planner {
                 let a = &m.args;
                 let from = self.start_pose(a);
                 let to = m.target.pose();
+                self.check_reach(&to, a, PathPlace::Target)?;
                 Ok(Geometry::Line {
                     from: from.translation.vector.into(),
                     to: to.translation.vector.into(),
@@ -269,6 +270,8 @@ impl Planner {
                 let from = self.start_pose(a);
                 let cir = m.cir_point.pose();
                 let to = m.to_point.pose();
+                self.check_reach(&cir, a, PathPlace::CirPoint)?;
+                self.check_reach(&to, a, PathPlace::Target)?;
                 let p0: Point3<f64> = from.translation.vector.into();
                 let arc = Arc::through(
                     &p0,
@@ -287,6 +290,21 @@ impl Planner {
                 };
                 Ok(Geometry::Circle { arc, ori })
             }
+        }
+    }
+
+    /// A point of a linear or circular move that no arm configuration reaches, or that is
+    /// not a finite number (a target at 9E9, a program displacement of 1E30), is outside
+    /// reach; checked before the move's duration is computed, which would otherwise call it
+    /// a move of more than 15 minutes. Axis limits and singularities along the way are left
+    /// to the sampling, which reports where on the path they are met.
+    fn check_reach(&self, point: &Pose, a: &MoveArgs, place: PathPlace) -> Result<(), MotionError> {
+        let flange = flange_target(point, &a.tool, &a.wobj, &a.pdisp);
+        match self.robot.ik_nearest(&flange, &self.start) {
+            Err(error @ (KinError::OutsideReach { .. } | KinError::NotFinite)) => {
+                Err(MotionError::Kinematics { error, place })
+            }
+            _ => Ok(()),
         }
     }
 
@@ -435,6 +453,14 @@ fn validate(a: &MoveArgs) -> Result<(), MotionError> {
         return Err(MotionError::InvalidData {
             what: "zonedata pzone_tcp (mm)",
             value: a.zone.pzone_tcp,
+        });
+    }
+    // ABB refuses a robot-held tool without mass (tool0 and load0 carry 0.001 kg for this
+    // reason): the robot's dynamic model needs the tool's weight.
+    if a.tool.robhold && !(a.tool.load.mass > 0.0 && a.tool.load.mass.is_finite()) {
+        return Err(MotionError::InvalidData {
+            what: "tool mass (tload.mass must be above 0 kg for a robot-held tool)",
+            value: a.tool.load.mass,
         });
     }
     if !a.wobj.ufprog {

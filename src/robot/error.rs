@@ -9,15 +9,18 @@ use super::singularity::SingularityKind;
 pub enum KinError {
     /// No arm configuration reaches the pose at all.
     #[error(
-        "position outside reach: flange at [{:.2}, {:.2}, {:.2}] mm (world) cannot be reached",
-        position[0], position[1], position[2]
+        "position outside reach: flange at [{}, {}, {}] mm (world) cannot be reached",
+        msg_num(position[0], Some(2)), msg_num(position[1], Some(2)), msg_num(position[2], Some(2))
     )]
     OutsideReach {
         /// The flange (tool0) position asked for, mm in world coordinates.
         position: [f64; 3],
     },
     /// An axis value lies outside its working range.
-    #[error("joint {joint} out of range: {value:.3}° is outside {min}°…{max}°")]
+    #[error(
+        "joint {joint} out of range: {}° is outside {}°…{}°",
+        msg_num(*value, Some(3)), msg_num(*min, None), msg_num(*max, None)
+    )]
     JointOutOfRange {
         /// Axis number, 1-based as ABB counts them.
         joint: usize,
@@ -62,8 +65,40 @@ fn available_text(available: &[ConfData]) -> String {
 }
 
 fn joints_text(j: &JointsDeg) -> String {
-    let parts: Vec<String> = j.iter().map(|v| format!("{v:.2}")).collect();
+    let parts: Vec<String> = j.iter().map(|v| msg_num(*v, Some(2))).collect();
     parts.join(", ")
+}
+
+/// Magnitude from which a message writes a number in exponent notation.
+const EXP_FROM: f64 = 1e9;
+/// Magnitude below which a number without fixed decimals is written in exponent notation.
+const EXP_BELOW: f64 = 1e-4;
+
+/// A number for an event or error message: with `decimals` digits after the point (Rust's
+/// shortest form for `None`), except that a magnitude of 1e9 or more (and, for `None`, one
+/// below 1e-4) is written in exponent notation with at most that many digits after the
+/// point (at least 2, 6 for `None`; trailing zeros dropped): `9e9`, `1e308`, `-2.5e-7`. A
+/// fixed form of those would be hundreds of digits long (1e308 has 309). NaN and infinity
+/// are written as `NaN`, `inf`, `-inf`.
+pub fn msg_num(x: f64, decimals: Option<usize>) -> String {
+    let a = x.abs();
+    let exponent =
+        x.is_finite() && (a >= EXP_FROM || (decimals.is_none() && a != 0.0 && a < EXP_BELOW));
+    if !exponent {
+        return match decimals {
+            Some(d) => format!("{x:.d$}"),
+            None => format!("{x}"),
+        };
+    }
+    let d = decimals.unwrap_or(6).max(2);
+    let text = format!("{x:.d$e}");
+    match text.split_once('e') {
+        Some((mantissa, exp)) if mantissa.contains('.') => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{exp}")
+        }
+        _ => text,
+    }
 }
 
 impl KinError {
@@ -98,6 +133,52 @@ impl KinError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn message_numbers_never_run_to_hundreds_of_digits() {
+        assert_eq!(msg_num(1e308, Some(2)), "1e308");
+        assert_eq!(msg_num(-1e308, None), "-1e308");
+        assert_eq!(msg_num(9e9, Some(2)), "9e9");
+        assert_eq!(msg_num(3e38_f32 as f64, Some(2)), "3e38");
+        assert_eq!(msg_num(1.25e30, Some(3)), "1.25e30");
+        assert_eq!(msg_num(1e-300, None), "1e-300");
+        assert_eq!(msg_num(2.5e-7, None), "2.5e-7");
+        // Ordinary magnitudes keep the fixed form they always had.
+        assert_eq!(msg_num(1705.776, Some(2)), "1705.78");
+        assert_eq!(msg_num(-180.0, None), "-180");
+        assert_eq!(msg_num(0.0, None), "0");
+        assert_eq!(msg_num(1e-300, Some(2)), "0.00");
+        assert_eq!(msg_num(f64::NAN, Some(2)), "NaN");
+        assert_eq!(msg_num(f64::NEG_INFINITY, None), "-inf");
+        for x in [
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+            123456789012.0,
+        ] {
+            for d in [None, Some(0), Some(1), Some(3)] {
+                assert!(msg_num(x, d).len() <= 24, "{x} {d:?}: {}", msg_num(x, d));
+            }
+        }
+        let e = KinError::OutsideReach {
+            position: [1e308, 0.0, -9e9],
+        };
+        assert_eq!(
+            e.to_string(),
+            "position outside reach: flange at [1e308, 0.00, -9e9] mm (world) cannot be reached"
+        );
+        let e = KinError::JointOutOfRange {
+            joint: 1,
+            value: 1e308,
+            min: -180.0,
+            max: 180.0,
+        };
+        assert_eq!(
+            e.to_string(),
+            "joint 1 out of range: 1e308° is outside -180°…180°"
+        );
+    }
 
     #[test]
     fn events_and_names() {

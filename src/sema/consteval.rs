@@ -4,6 +4,7 @@
 use super::error::SemaErrorKind as K;
 use super::{Checker, LocalSym};
 use crate::ast::{BinOp, Expr, ExprKind, Storage, UnaryOp};
+use crate::ir::limits::MAX_DECL_VALUES;
 use crate::ir::{GlobalOrigin, TypeId};
 
 /// Folding state of a global constant.
@@ -16,12 +17,26 @@ pub(crate) enum ConstState {
 }
 
 impl Checker<'_> {
-    /// Array sizes: positive integer constants (1 for each that is not).
+    /// Array sizes: positive integer constants (1 for each that is not, or that is larger
+    /// than one declaration may hold, with a diagnostic naming the limit).
     pub(super) fn const_dims(&mut self, dims: &[Expr]) -> Vec<u32> {
         dims.iter()
             .map(|d| match self.const_num(d) {
-                Some(x) if x >= 1.0 && x.fract() == 0.0 && x <= 1.0e6 => x as u32,
-                _ => {
+                Some(x) if x >= 1.0 && x.fract() == 0.0 && x <= MAX_DECL_VALUES as f64 => x as u32,
+                Some(x) if x >= 1.0 && x.fract() == 0.0 => {
+                    self.err(K::ArraySizeTooLarge { size: x }, d.span);
+                    1
+                }
+                Some(x) => {
+                    self.err(
+                        K::BadDecl {
+                            why: format!("an array size must be a positive integer, not {x}"),
+                        },
+                        d.span,
+                    );
+                    1
+                }
+                None => {
                     self.err(
                         K::NotConstant {
                             what: "an array size (a positive integer)",

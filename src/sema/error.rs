@@ -5,6 +5,7 @@ use std::fmt;
 use miette::{Diagnostic, LabeledSpan, Severity};
 
 use crate::diag::RapidDiagnostic;
+use crate::ir::limits::{MAX_DECL_VALUES, MAX_TASK_VALUES, thousands};
 use crate::source::{SourceId, Span};
 
 /// What the semantic pass found.
@@ -240,6 +241,28 @@ pub enum SemaErrorKind {
         /// Its length.
         len: usize,
     },
+    /// An array size larger than one declaration may hold ([`crate::ir::limits`]).
+    ArraySizeTooLarge {
+        /// The size.
+        size: f64,
+    },
+    /// A declaration holding more values than one declaration may.
+    DeclTooLarge {
+        /// The data name.
+        name: String,
+        /// How many values it holds.
+        values: u64,
+    },
+    /// Data that brings the task over its limit: module data, or a routine's data on top
+    /// of the module data.
+    TaskDataTooLarge {
+        /// The declaration that crosses the limit.
+        name: String,
+        /// The routine, for routine data.
+        routine: Option<String>,
+        /// Values held up to and including it.
+        values: u64,
+    },
     /// A native signature names a type rapidvc does not define (an internal error).
     BadSignature {
         /// The native.
@@ -248,6 +271,9 @@ pub enum SemaErrorKind {
         ty: String,
     },
 }
+
+/// How data is counted against the limits (shown with every data-limit diagnostic).
+const DATA_LIMIT_HELP: &str = "a num, dnum, bool or string is one value, a record holds the values of its components (a robtarget 17); see \"Data limits\" in the README";
 
 /// A semantic error or warning at a span.
 #[derive(Clone, Debug, PartialEq)]
@@ -548,6 +574,46 @@ impl SemaError {
                 format!("string of {len} characters; RAPID strings hold at most 80"),
                 "too long",
                 None,
+            ),
+            K::ArraySizeTooLarge { size } => d(
+                "rapidvc::sema::data_limit",
+                format!(
+                    "array size {size} is too large: one declaration holds at most {} values",
+                    thousands(MAX_DECL_VALUES)
+                ),
+                "too large",
+                Some(DATA_LIMIT_HELP.into()),
+            ),
+            K::DeclTooLarge { name, values } => d(
+                "rapidvc::sema::data_limit",
+                format!(
+                    "`{name}` holds {} values: one declaration holds at most {}",
+                    thousands(*values),
+                    thousands(MAX_DECL_VALUES)
+                ),
+                "too much data",
+                Some(DATA_LIMIT_HELP.into()),
+            ),
+            K::TaskDataTooLarge {
+                name,
+                routine,
+                values,
+            } => d(
+                "rapidvc::sema::data_limit",
+                match routine {
+                    None => format!(
+                        "with `{name}`, the module data holds {} values: a task holds at most {}",
+                        thousands(*values),
+                        thousands(MAX_TASK_VALUES)
+                    ),
+                    Some(r) => format!(
+                        "with `{name}`, the data of `{r}` and the module data hold {} values: a task holds at most {}",
+                        thousands(*values),
+                        thousands(MAX_TASK_VALUES)
+                    ),
+                },
+                "over the task's data limit",
+                Some(DATA_LIMIT_HELP.into()),
             ),
             K::BadSignature { native, ty } => d(
                 "rapidvc::sema::internal",

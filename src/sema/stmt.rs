@@ -91,6 +91,7 @@ impl<'a> Checker<'a> {
             returns: 0,
         });
         let locals = self.routine_data(&r.data);
+        self.check_routine_data(&r.name.node, &locals);
         let body = if self.incomplete.contains(&(rid.0 as usize)) {
             Block {
                 stmts: vec![Stmt {

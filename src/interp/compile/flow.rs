@@ -17,6 +17,8 @@ pub(crate) struct CFor {
     pub step: Option<(NumFn, Span)>,
     pub body: CBlock,
     pub span: Span,
+    /// `FOR i FROM a TO b [STEP c]`: where an iteration of an empty body is counted.
+    pub head: Span,
 }
 
 /// A compiled TEST: the subject and case values as lowered, the bodies compiled.
@@ -84,7 +86,11 @@ impl Interp {
                 Some(v) => *v = Value::Num(i),
                 None => {}
             }
-            self.exec_cblock(c, &f.body)?;
+            if f.body.stmts.is_empty() {
+                self.step(&c.prog, f.head)?;
+            } else {
+                self.exec_cblock(c, &f.body)?;
+            }
             let next = i + st;
             if next == i {
                 return Err(self.error(

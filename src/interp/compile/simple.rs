@@ -21,6 +21,9 @@ pub(crate) struct SCall {
     span: Span,
     /// The callee's number of value slots.
     n_slots: usize,
+    /// Values its arguments add to the task's data; `u64::MAX` when one is an array (such
+    /// calls go the general way, which counts the array).
+    values: u64,
     /// A pure `FUNC num` body compiled for this call, and the span of its `RETURN`.
     inline: Option<(NumFn, Span)>,
     /// That body with its parameters replaced by the arguments (all reads without side
@@ -46,13 +49,22 @@ impl SCall {
             })
             .collect();
         let func_num = r.kind == crate::ir::RoutineKind::Func(Ty::NUM);
+        let arrays = r.params.iter().any(|q| q.ty.rank > 0);
+        let values = if arrays {
+            u64::MAX
+        } else {
+            r.params
+                .iter()
+                .map(|q| p.types.values(q.ty, &[]))
+                .fold(0u64, u64::saturating_add)
+        };
         let body = match r.body.stmts.as_slice() {
             [
                 Stmt {
                     kind: StmtKind::Return(Some(e)),
                     span,
                 },
-            ] if func_num && pure(e) => Some((e, *span)),
+            ] if func_num && !arrays && pure(e) => Some((e, *span)),
             _ => None,
         };
         let inline = body.map(|(e, span)| (num(p, e), span));
@@ -65,6 +77,7 @@ impl SCall {
             ir_args: args.into(),
             span,
             n_slots: r.n_slots as usize,
+            values,
             inline,
             inlined,
         }
@@ -240,7 +253,10 @@ impl Interp {
                 _ => return self.simple_general(c, sc),
             },
         };
-        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
+        if self.frames.len() >= MAX_DEPTH
+            || self.stack_exhausted()
+            || self.data_values.saturating_add(sc.values) > crate::ir::limits::MAX_TASK_VALUES
+        {
             return self.simple_general(c, sc);
         }
         let bp = self.sp;
@@ -268,6 +284,7 @@ impl Interp {
         }
         let saved = self.bp;
         self.bp = bp;
+        self.data_values += sc.values;
         self.steps += 1;
         let mut x = f32::NAN;
         if sc.inline.is_some() && self.steps < self.next_poll {
@@ -280,6 +297,7 @@ impl Interp {
         if x.is_nan() {
             x = self.simple_framed(c, sc, body, st_span);
         }
+        self.data_values -= sc.values;
         self.bp = saved;
         self.sp = bp;
         x
