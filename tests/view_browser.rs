@@ -28,6 +28,15 @@ use serde_json::Value;
 
 const IGNORE: &str = "needs Chromium";
 
+/// One browser at a time: three Chromiums and a real-time run on two cores time out.
+static ONE_BROWSER: Mutex<()> = Mutex::new(());
+
+fn one_browser() -> std::sync::MutexGuard<'static, ()> {
+    ONE_BROWSER
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -328,6 +337,7 @@ fn check_page(name: &str, page: &Path, trace: &Path, tp_lines: &[&str]) -> (u64,
 #[test]
 #[ignore = "needs Chromium (Debian package `chromium`, installed by .ci/run): cargo test --test view_browser -- --include-ignored"]
 fn manual_examples_replay_in_chromium() {
+    let _one = one_browser();
     for name in [
         "position_guidance_signals",
         "path_correction",
@@ -343,6 +353,7 @@ fn manual_examples_replay_in_chromium() {
 #[test]
 #[ignore = "needs Chromium (Debian package `chromium`, installed by .ci/run): cargo test --test view_browser -- --include-ignored"]
 fn ten_minute_run_replays_in_chromium() {
+    let _one = one_browser();
     let (page, trace, stdout) = replay(&root().join("tests/view/long_run.mod"), "long_run");
     let rows = view_page::read_trace(&trace);
     assert!(
@@ -352,4 +363,49 @@ fn ten_minute_run_replays_in_chromium() {
     let tp: Vec<&str> = stdout.lines().collect();
     let (size, _) = check_page("long_run", &page, &trace, &tp);
     assert!(size < 1_000_000, "a ten-minute run's page is {size} bytes");
+}
+
+#[test]
+#[ignore = "needs Chromium (Debian package `chromium`, installed by .ci/run): cargo test --test view_browser -- --include-ignored"]
+fn live_page_follows_a_real_time_run_in_chromium() {
+    let _one = one_browser();
+    use std::io::{BufRead, BufReader, Read};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        .args(["run", "tests/view/live_run.mod", "--view-live"])
+        .current_dir(root())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start rapidvc");
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut first = String::new();
+    stderr.read_line(&mut first).expect("stderr");
+    let url = first
+        .strip_prefix("live view: ")
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no URL in {first:?}"))
+        .to_string();
+    let p = open(&url, "live");
+    // Rows arrive while the program runs; the page ends on the run's last state.
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while p.eval("document.getElementById('status').textContent") != "live · run ended" {
+        assert!(Instant::now() < deadline, "the live page never saw the end");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let rows = p.eval("rapidvc.rows()").as_u64().unwrap_or(0);
+    assert!(rows >= 100, "{rows} rows streamed");
+    let drawn = p.eval("JSON.stringify(rapidvc.seek(rapidvc.duration()))");
+    let drawn: Value = serde_json::from_str(drawn.as_str().unwrap()).unwrap();
+    let j = nums(&drawn["joints"]);
+    let home = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
+    for (d, e) in j.iter().zip(home) {
+        assert!((d - e).abs() < 0.02, "ends at {j:?}");
+    }
+    p.screenshot(&out_dir().join("live_end.png"));
+    assert!(p.problems().is_empty(), "{:?}", p.problems());
+    let status = child.wait().expect("rapidvc ends");
+    let mut rest = String::new();
+    stderr.read_to_string(&mut rest).unwrap();
+    assert!(status.success(), "{rest}");
+    eprintln!("with the live page connected: {}", rest.trim());
 }

@@ -1,9 +1,9 @@
 //! The live view: an HTTP server that serves the view page and streams the robot's state over
 //! a WebSocket while the program runs.
 //!
-//! [`router`] is an axum `Router` with two routes, `/` (the page) and `/ws` (the stream), so a
+//! [`router`] is an axum `Router` with the routes `/` (the page) and `/ws` (the stream), so a
 //! larger server can mount it under a prefix (`Router::new().nest("/view", router(session))`;
-//! the page finds its stream relative to its own address). [`LiveServer`] runs it on its own
+//! the page is then at `/view` and finds its stream at `/view/ws`). [`LiveServer`] runs it on its own
 //! tokio runtime and thread, never in the motion cycle.
 //!
 //! # Stream
@@ -25,7 +25,7 @@ use std::time::Duration;
 use axum::Router;
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::http::header;
+use axum::http::{StatusCode, header};
 use axum::response::{Html, IntoResponse, Response};
 use axum::routing::get;
 use tokio::sync::{broadcast, oneshot};
@@ -38,18 +38,27 @@ const CLOSE_GRACE: Duration = Duration::from_secs(2);
 #[derive(Clone)]
 struct AppState {
     session: ViewSession,
-    viewers: Arc<AtomicUsize>,
+    viewers: Arc<Viewers>,
+}
+
+/// Viewers connected now and since the start.
+#[derive(Debug, Default)]
+struct Viewers {
+    now: AtomicUsize,
+    total: AtomicUsize,
 }
 
 /// The live view's routes (`/` and `/ws`) for `session`.
 pub fn router(session: ViewSession) -> Router {
-    router_counted(session, Arc::new(AtomicUsize::new(0)))
+    router_counted(session, Arc::new(Viewers::default()))
 }
 
-fn router_counted(session: ViewSession, viewers: Arc<AtomicUsize>) -> Router {
+fn router_counted(session: ViewSession, viewers: Arc<Viewers>) -> Router {
     Router::new()
         .route("/", get(page))
         .route("/ws", get(ws))
+        // Browsers ask for it; the page has none.
+        .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .with_state(AppState { session, viewers })
 }
 
@@ -66,16 +75,17 @@ async fn ws(upgrade: WebSocketUpgrade, State(s): State<AppState>) -> Response {
 }
 
 /// Decrements the viewer count when a stream ends, however it ends.
-struct Viewer(Arc<AtomicUsize>);
+struct Viewer(Arc<Viewers>);
 
 impl Drop for Viewer {
     fn drop(&mut self) {
-        self.0.fetch_sub(1, Ordering::SeqCst);
+        self.0.now.fetch_sub(1, Ordering::SeqCst);
     }
 }
 
 async fn stream(mut socket: WebSocket, s: AppState) {
-    s.viewers.fetch_add(1, Ordering::SeqCst);
+    s.viewers.now.fetch_add(1, Ordering::SeqCst);
+    s.viewers.total.fetch_add(1, Ordering::SeqCst);
     let _viewer = Viewer(Arc::clone(&s.viewers));
     // Subscribe before taking the snapshot: nothing falls between the two.
     let mut rx = s.session.subscribe();
@@ -130,7 +140,7 @@ async fn stream(mut socket: WebSocket, s: AppState) {
 pub struct LiveServer {
     addr: SocketAddr,
     session: ViewSession,
-    viewers: Arc<AtomicUsize>,
+    viewers: Arc<Viewers>,
     shutdown: Option<oneshot::Sender<()>>,
     thread: Option<JoinHandle<()>>,
 }
@@ -156,7 +166,7 @@ impl LiveServer {
             .local_addr()
             .map_err(|e| format!("--view-live: {e}"))?;
         session.enable_live();
-        let viewers = Arc::new(AtomicUsize::new(0));
+        let viewers = Arc::new(Viewers::default());
         let app = router_counted(session.clone(), Arc::clone(&viewers));
         let (tx, rx) = oneshot::channel::<()>();
         let runtime = tokio::runtime::Builder::new_current_thread()
@@ -177,7 +187,7 @@ impl LiveServer {
                         _ = rx => {
                             // Let the viewers receive the end of the stream.
                             let deadline = tokio::time::Instant::now() + CLOSE_GRACE;
-                            while count.load(Ordering::SeqCst) > 0
+                            while count.now.load(Ordering::SeqCst) > 0
                                 && tokio::time::Instant::now() < deadline
                             {
                                 tokio::time::sleep(Duration::from_millis(10)).await;
@@ -204,7 +214,12 @@ impl LiveServer {
 
     /// Viewers connected to the stream now.
     pub fn viewers(&self) -> usize {
-        self.viewers.load(Ordering::SeqCst)
+        self.viewers.now.load(Ordering::SeqCst)
+    }
+
+    /// Viewers that connected to the stream since the start.
+    pub fn viewers_total(&self) -> usize {
+        self.viewers.total.load(Ordering::SeqCst)
     }
 
     /// End the stream (viewers get `end`) and stop the server.

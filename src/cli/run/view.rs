@@ -159,7 +159,12 @@ impl ViewRun {
     pub fn finish(self, ended: &str) -> Result<(), String> {
         self.session.end(ended);
         if let Some(server) = self.server {
+            let viewers = server.viewers_total();
             server.stop();
+            eprintln!(
+                "live view: {viewers} viewer{} connected during the run",
+                if viewers == 1 { "" } else { "s" }
+            );
         }
         if let Some(path) = &self.page {
             let size = self.session.write_page(path)?;

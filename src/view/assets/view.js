@@ -476,11 +476,15 @@
     for (let k = 0; k < M.t.length; k += Math.max(1, Math.floor(M.t.length / 500))) {
       xs.push(M.p[0][k]); ys.push(M.p[1][k]); zs.push(M.p[2][k]);
     }
+    // The arm where it starts and where it ends.
+    for (const k of M.t.length ? [0, M.t.length - 1] : []) {
+      for (const o of jointFrames(M.j.map((c) => c[k])).map(origin)) { xs.push(o[0]); ys.push(o[1]); zs.push(o[2]); }
+    }
     const lo = [Math.min(...xs), Math.min(...ys), Math.min(...zs)];
     const hi = [Math.max(...xs), Math.max(...ys), Math.max(...zs)];
     cam.target = scale3(add3(lo, hi), 0.5);
-    const size = Math.max(len3(sub3(hi, lo)), R * 0.8);
-    cam.dist = size * 1.55;
+    const size = Math.max(len3(sub3(hi, lo)), R * 1.1);
+    cam.dist = size * 1.35;
     cam.yaw = -0.95; cam.pitch = 0.38;
   }
   function eye() {
@@ -488,10 +492,10 @@
     return add3(cam.target, scale3([c * Math.cos(cam.yaw), c * Math.sin(cam.yaw), Math.sin(cam.pitch)], cam.dist));
   }
 
-  let dragging = null;
+  let dragging = null; let moved = false;
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
   canvas.addEventListener('mousedown', (e) => {
-    dragging = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey };
+    dragging = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey }; moved = true;
   });
   window.addEventListener('mouseup', () => { dragging = null; });
   window.addEventListener('mousemove', (e) => {
@@ -592,7 +596,7 @@
   let fileViews = []; let shownFile = -1; let curLineEl = null; let shownInstr = -2;
 
   function buildSource() {
-    srcEl.textContent = ''; tabsEl.textContent = ''; fileViews = [];
+    srcEl.textContent = ''; tabsEl.textContent = ''; fileViews = []; shownFile = -1; curLineEl = null;
     M.scene.files.forEach((f, k) => {
       const pre = document.createElement('div');
       pre.className = 'src'; pre.hidden = true;
@@ -946,7 +950,7 @@
       let m;
       try { m = JSON.parse(ev.data); } catch (e) { return; }
       switch (m.type) {
-        case 'snapshot': load(m.data); M.live = true; rebuild(); break;
+        case 'snapshot': load(m.data); M.live = true; rebuild(); if (!moved) resetCamera(); break;
         case 'row': if (appendRow(m)) dirty = true; break;
         case 'instr': if (m.index >= M.instrs.length) M.instrs[m.index] = m.instr; break;
         case 'log':
