@@ -483,8 +483,11 @@
     const lo = [Math.min(...xs), Math.min(...ys), Math.min(...zs)];
     const hi = [Math.max(...xs), Math.max(...ys), Math.max(...zs)];
     cam.target = scale3(add3(lo, hi), 0.5);
+    // Leave the read-out in the top left corner free: the scene a little to the right.
+    const side = norm3(cross3([0, 0, 1], [Math.cos(-0.95), Math.sin(-0.95), 0]));
+    cam.target = add3(cam.target, scale3(side, -R * 0.15));
     const size = Math.max(len3(sub3(hi, lo)), R * 1.1);
-    cam.dist = size * 1.35;
+    cam.dist = size * 1.5;
     cam.yaw = -0.95; cam.pitch = 0.38;
   }
   function eye() {
