@@ -422,12 +422,14 @@
     pathLines = lineSet(v, pathLines);
     const c = [];
     const P = M.path;
+    const gain = $('exag').checked ? 20 : 1;
+    const mag = (p, q) => add3(p, scale3(sub3(q, p), gain));
     for (let k = 1; k < P.t.length; k++) {
       if (P.start[k]) continue;
       const pa = [P.prog[0][k - 1], P.prog[1][k - 1], P.prog[2][k - 1]];
       const pb = [P.prog[0][k], P.prog[1][k], P.prog[2][k]];
-      const ca = [P.cor[0][k - 1], P.cor[1][k - 1], P.cor[2][k - 1]];
-      const cb = [P.cor[0][k], P.cor[1][k], P.cor[2][k]];
+      const ca = mag(pa, [P.cor[0][k - 1], P.cor[1][k - 1], P.cor[2][k - 1]]);
+      const cb = mag(pb, [P.cor[0][k], P.cor[1][k], P.cor[2][k]]);
       c.push(...pa, 0.95, 0.95, 0.95, ...pb, 0.95, 0.95, 0.95);
       c.push(...ca, 1, 0.3, 0.85, ...cb, 1, 0.3, 0.85);
     }
@@ -739,6 +741,7 @@
     }
     if (P.t.length) panels.push({ kind: 'path' });
     $('charts').hidden = panels.length === 0;
+    $('exagbox').hidden = P.t.length === 0;
     const ts = [];
     if (E.t.length) ts.push(E.t[0], E.t[E.t.length - 1]);
     if (P.t.length) ts.push(P.t[0], P.t[P.t.length - 1]);
@@ -874,6 +877,7 @@
     }
   });
   $('follow').addEventListener('change', () => requestDraw());
+  $('exag').addEventListener('change', () => { if (gl) buildPath(); requestDraw(); });
 
   // ---------------------------------------------------------------- transport ------------
   const slider = $('slider'); const playBtn = $('play'); const rateSel = $('rate');
@@ -1018,6 +1022,8 @@
     $('title').textContent = M.scene.title;
     document.title = 'rapidvc · ' + M.scene.title;
     if (gl) initGl(); else { $('nogl').hidden = false; $('help').hidden = true; }
+    // `#exag` magnifies the path correction in 3D from the start.
+    if (/[#&]exag\b/.test(location.hash)) $('exag').checked = true;
     rebuild();
     resetCamera();
     nowUs = M.live && !M.finished ? M.endUs : 0;
