@@ -241,7 +241,9 @@ fn bad_view_options_fail_before_the_run() {
     assert_eq!(code, 2);
     assert!(stdout.is_empty(), "nothing ran: {stdout}");
     assert!(
-        stderr.contains("cannot create the view /nonexistent-dir/x.html"),
+        stderr.contains(
+            "--view /nonexistent-dir/x.html: the directory /nonexistent-dir does not exist"
+        ),
         "{stderr}"
     );
     let (code, _, stderr) = rapidvc(&[

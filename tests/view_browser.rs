@@ -3,7 +3,7 @@
 //! examples and a ten-minute run the replay page must load without a console error, draw the
 //! robot at slider positions with the trace's axis values (joint frames as the robot model
 //! computes them, TCP as traced), highlight the traced source line and show the program's TP
-//! output; screenshots go to `target/tmp/view/`.
+//! output; screenshots go to `$CARGO_TARGET_TMPDIR/view/`.
 //!
 //! The tests need Chromium: they run when `RAPIDVC_CHROMIUM` names the browser at build time
 //! (`.ci/run` installs Debian's `chromium` and sets it), and are reported as ignored
