@@ -11,6 +11,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if std::env::var_os("RAPIDVC_PYTHON").is_some_and(|v| !v.is_empty()) {
         println!("cargo:rustc-cfg=rapidvc_python");
     }
+    // The same for the browser tests of the view pages (tests/view_browser.rs): Chromium.
+    println!("cargo::rustc-check-cfg=cfg(rapidvc_chromium)");
+    println!("cargo:rerun-if-env-changed=RAPIDVC_CHROMIUM");
+    if std::env::var_os("RAPIDVC_CHROMIUM").is_some_and(|v| !v.is_empty()) {
+        println!("cargo:rustc-cfg=rapidvc_chromium");
+    }
     let fds = protox::compile(["egm.proto"], ["proto"])?;
     // proto2 repeated doubles stay unpacked (one tag per value), as ABB's encoder and every
     // tested client write them; prost-build follows the descriptor's labels.

@@ -29,3 +29,4 @@ pub mod robot;
 pub mod rtlib;
 pub mod sema;
 pub mod source;
+pub mod view;

@@ -18,6 +18,7 @@ use super::robots::RobotArg;
 use super::{interrupt, num, program, progress_line, render};
 
 pub mod egm;
+pub mod view;
 use crate::controller::egm::EgmController;
 use crate::controller::{
     ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, CycleHook,
@@ -80,6 +81,9 @@ pub struct RunArgs {
     /// EGM: devices, message log, lockstep.
     #[command(flatten)]
     pub egm: egm::EgmArgs,
+    /// 3D view: replay page, live view.
+    #[command(flatten)]
+    pub view: view::ViewArgs,
 }
 
 /// The durations the numeric options give a run (the value parsers bound the options, so
@@ -163,12 +167,20 @@ pub fn run(args: RunArgs) -> ExitCode {
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm::uses_egm(&prog, &sources);
+    let view = match start_view(&args, &prog, &sources) {
+        Ok(v) => v,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     let started = start_controller(
         &args,
         &sources,
         &loaded.config,
         &signals,
         uses_egm.then_some(&prepared.devices),
+        view.as_ref(),
     );
     let (ctl, egm_controller, egm_log_written, outside_inputs) = match started {
         Ok(c) => c,
@@ -177,6 +189,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let tee = view.as_ref().map(view::ViewRun::session);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -184,7 +197,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         .with_outside_inputs(outside_inputs)
         .with_stop_request(Arc::clone(&interrupted))
         .with_lines(Arc::clone(&sources))
-        .with_sink(print_output);
+        .with_sink(move |o| {
+            if let Some(v) = &tee {
+                v.output(o);
+            }
+            print_output(o);
+        });
     let mut it = Interp::new(prog, &registry, Box::new(host));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
@@ -202,6 +220,9 @@ pub fn run(args: RunArgs) -> ExitCode {
                     eprintln!("warning: {}: {w}", stored.path.display());
                 }
             }
+            if let Some(v) = &view {
+                v.after_init(&it);
+            }
             run_cycles(&args, &mut it, &sources)
         }
     };
@@ -215,7 +236,8 @@ pub fn run(args: RunArgs) -> ExitCode {
         code = ExitCode::from(1);
     }
     let was_interrupted = interrupted.load(Ordering::Relaxed);
-    let announce = args.trace.is_some() || args.plot.is_some() || args.realtime;
+    let announce =
+        args.trace.is_some() || args.plot.is_some() || args.realtime || args.view.wanted();
     if let Some(host) = it
         .host_mut()
         .as_any_mut()
@@ -240,6 +262,17 @@ pub fn run(args: RunArgs) -> ExitCode {
             eprintln!("error: {msg}");
             code = ExitCode::from(2);
         }
+    }
+    let ended = if was_interrupted {
+        "program stopped by Ctrl-C"
+    } else {
+        view::ended_text(&code, drain)
+    };
+    if let Some(v) = view
+        && let Err(msg) = v.finish(ended)
+    {
+        eprintln!("error: {msg}");
+        code = ExitCode::from(2);
     }
     if let Some(path) = &args.pers {
         let original = prepared.pers.as_ref().map(|p| p.text.as_str());
@@ -347,6 +380,7 @@ fn check_paths(args: &RunArgs) -> Result<(), String> {
         ("--plot", &args.plot),
         ("--egm-log", &args.egm.egm_log),
         ("--pers", &args.pers),
+        ("--view", &args.view.view),
     ] {
         if let Some(p) = path {
             outputs.push(Role::new(what, p));
@@ -413,8 +447,25 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
     (ExitCode::SUCCESS, true)
 }
 
-/// The controller of this run: robot, period, start position, clock, trace and plot, and its
-/// EGM side (devices, clock choice, report feed, `--egm-log`).
+/// The view of this run (`--view`, `--view-live`), showing the program's own modules.
+fn start_view(
+    args: &RunArgs,
+    prog: &crate::ir::Program,
+    sources: &Arc<SourceMap>,
+) -> Result<Option<view::ViewRun>, String> {
+    let mut files = Vec::new();
+    for m in prog.modules.iter().filter(|m| !m.stdlib) {
+        if !files.contains(&m.source) {
+            files.push(m.source);
+        }
+    }
+    let robot = Robot::new(args.robot.0);
+    args.view
+        .start(plot_title(args), &robot, args.period, sources, files)
+}
+
+/// The controller of this run: robot, period, start position, clock, trace, plot and view,
+/// and its EGM side (devices, clock choice, report feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
 /// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
 /// program sets up, `None` when it uses no EGM.
@@ -424,6 +475,7 @@ fn start_controller(
     cfg: &crate::config::Config,
     signals: &Arc<crate::io::SignalTable>,
     egm_devices: Option<&egm::DeviceUse>,
+    view: Option<&view::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
     let uses_egm = egm_devices.is_some();
     if args.egm.egm_log.is_some() && !uses_egm {
@@ -454,6 +506,9 @@ fn start_controller(
             plot
         }));
     }
+    if let Some(v) = view {
+        sinks.push(v.sink(uses_egm.then(|| feed.subscribe())));
+    }
     if std::io::stderr().is_terminal() {
         sinks.push(Box::new(progress_line::ProgressLine::new(Arc::clone(
             sources,
@@ -470,6 +525,12 @@ fn start_controller(
     if args.egm.lockstep && args.realtime {
         return Err("--lockstep keeps virtual time; it cannot be combined with --realtime".into());
     }
+    if args.egm.lockstep && args.view.needs_realtime() {
+        return Err(
+            "--lockstep keeps virtual time; it cannot be combined with --view-live (which runs in real time)"
+                .into(),
+        );
+    }
     let feed = (!feed.is_unused()).then_some(feed);
     let prepared = args.egm.prepare(
         cfg,
@@ -481,8 +542,9 @@ fn start_controller(
     )?;
     let log_written = prepared.log_written;
     let outside_inputs = args.egm.lockstep && !prepared.external.is_empty();
-    let realtime = args.realtime || (uses_egm && prepared.needs_realtime);
-    if realtime && !args.realtime {
+    let realtime =
+        args.realtime || args.view.needs_realtime() || (uses_egm && prepared.needs_realtime);
+    if uses_egm && prepared.needs_realtime && !args.realtime && !args.view.needs_realtime() {
         progress_line::clear();
         eprintln!(
             "note: EGM device {} is an external sensor: the clock runs in real time (--lockstep keeps virtual time)",

@@ -109,6 +109,10 @@ pub struct PathCorrSample {
     /// The seam as the sensor measured it at `s_mm` (mm); `None` when no measurement
     /// refers to this point.
     pub measured_yz: Option<[f64; 2]>,
+    /// The correction applied, in world coordinates (mm): the corrected TCP less this is the
+    /// programmed one (the 3D view draws both paths). `None` when the producer does not
+    /// know it.
+    pub offset_world: Option<[f64; 3]>,
 }
 
 impl PathCorrSample {
@@ -237,6 +241,7 @@ impl Feed {
             programmed_yz,
             corrected_yz,
             measured_yz,
+            offset_world: None,
         }));
     }
 }
@@ -320,6 +325,7 @@ mod tests {
             programmed_yz: [1.0, 2.0],
             corrected_yz: [4.0, 0.0],
             measured_yz: None,
+            offset_world: None,
         };
         assert_eq!(s.correction(), [3.0, -2.0]);
     }

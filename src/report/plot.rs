@@ -403,6 +403,7 @@ mod tests {
                 programmed_yz: [v, -v],
                 corrected_yz: [v, v],
                 measured_yz: Some([v, 0.0]),
+                offset_world: None,
             }));
         }
         render(&dir.join("hostile.svg"), &data).unwrap();

@@ -10,7 +10,7 @@ use crate::egm::driver::CorrectionInput;
 use crate::egm::event::EgmEvent;
 use crate::egm::log::LogRow;
 use crate::motion::{Executor, RobotTime, Setpoint};
-use crate::report::{EgmTraceState, Feed};
+use crate::report::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::robot::{ToolData, WobjData};
 
 use super::seam::{SeamCorrection, rejection_kind};
@@ -244,13 +244,14 @@ impl CycleHook for PathCorrHook {
         let measured = seam.take_measured();
         let left = seam.take_left();
         if let (Some(a), Some(f)) = (fresh, &self.feed) {
-            f.push_pathcorr_sample(
-                sp.time,
-                a.s,
-                [0.0, 0.0],
-                [a.offset.y, a.offset.z],
-                measured.map(|m| [m.y, m.z]),
-            );
+            f.push(FeedItem::PathCorr(PathCorrSample {
+                t: sp.time,
+                s_mm: a.s,
+                programmed_yz: [0.0, 0.0],
+                corrected_yz: [a.offset.y, a.offset.z],
+                measured_yz: measured.map(|m| [m.y, m.z]),
+                offset_world: Some([a.world.x, a.world.y, a.world.z]),
+            }));
         }
         if let Some(e) = rejected {
             self.event(e);

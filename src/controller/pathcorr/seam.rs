@@ -45,6 +45,9 @@ pub(super) struct Applied {
     pub s: f64,
     /// The offset applied, path frame, mm.
     pub offset: PathOffset,
+    /// The same offset in world coordinates, mm (the corrected TCP less this is the
+    /// programmed one).
+    pub world: Vector3<f64>,
     /// The sensor frame origin's distance ahead of the TCP along the path, mm (≥ 0).
     pub look_ahead: f64,
     /// The motion command id of that cycle.
@@ -201,14 +204,16 @@ impl PathCorrection for SeamCorrection {
             self.measured_now = Some(m.offset);
             self.measured.pop_front();
         }
+        let world = frame.to_world(offset);
         self.applied = Some(Applied {
             time: now,
             s: point.s,
             offset,
+            world,
             look_ahead,
             id: point.instr.id,
         });
-        Ok(frame.to_world(offset))
+        Ok(world)
     }
 
     fn leave(&mut self, _now: RobotTime, instr: &InstrRef) -> Result<(), MotionError> {
