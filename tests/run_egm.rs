@@ -1,12 +1,15 @@
 //! EGM through `rapidvc run`: the manual's examples with one command, the failure modes as RAPID sees them, `\NoWaitCond`/EGMWaitCond/EGMStop, position streams to a UDP receiver, trace and `--egm-log` output, and a hostile sensor (garbage datagrams, NaN and out-of-range references, a second sender, silence) against which the session survives or ends with ERR_UDPUC_COMM and the robot never leaves its limits. Every test ends by itself (bounded waits, children killed on drop).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+#[path = "support/egm_wire.rs"]
+mod egm_wire;
 #[path = "support/procs.rs"]
 mod procs;
 
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
+use egm_wire::joint_reply;
 use procs::{Ended, near, printed, run_program};
 use prost::Message;
 use rapidvc::egm::proto;
@@ -260,24 +263,6 @@ mod hostile {
     const TARGET_2: [f64; 6] = [-10.0, 5.0, 10.0, 0.0, 35.0, -20.0];
     const INTRUDER: [f64; 6] = [-40.0, 30.0, -30.0, 60.0, -60.0, 90.0];
 
-    fn reply(seq: u32, joints: [f64; 6]) -> Vec<u8> {
-        proto::EgmSensor {
-            header: Some(proto::EgmHeader {
-                seqno: Some(seq),
-                tm: Some(seq * 4),
-                mtype: Some(proto::egm_header::MessageType::MsgtypeCorrection as i32),
-            }),
-            planned: Some(proto::EgmPlanned {
-                joints: Some(proto::EgmJoints {
-                    joints: joints.to_vec(),
-                }),
-                ..Default::default()
-            }),
-            ..Default::default()
-        }
-        .encode_to_vec()
-    }
-
     struct Report {
         sessions: u32,
         received: u32,
@@ -333,7 +318,7 @@ mod hostile {
                         junk((0..(next() % 200)).map(|_| next() as u8).collect());
                     }
                     if k.is_multiple_of(11) {
-                        let mut t = reply(seq, TARGET_1);
+                        let mut t = joint_reply(seq, TARGET_1);
                         t.truncate(t.len() / 2);
                         junk(t);
                     }
@@ -341,23 +326,26 @@ mod hostile {
                         junk(vec![0x0a; 4000]);
                     }
                     if k.is_multiple_of(17) {
-                        junk(reply(seq, [f64::NAN, 0.0, 0.0, 0.0, f64::INFINITY, 0.0]));
+                        junk(joint_reply(
+                            seq,
+                            [f64::NAN, 0.0, 0.0, 0.0, f64::INFINITY, 0.0],
+                        ));
                     }
                     if k.is_multiple_of(19) {
-                        junk(reply(seq, [1000.0, 0.0, 0.0, 0.0, 30.0, 0.0]));
+                        junk(joint_reply(seq, [1000.0, 0.0, 0.0, 0.0, 30.0, 0.0]));
                     }
-                    intruder.send_to(&reply(seq, INTRUDER), src).unwrap();
+                    intruder.send_to(&joint_reply(seq, INTRUDER), src).unwrap();
                     if k % 5 != 3 {
                         // Mostly the real reply last, sometimes before the garbage.
-                        sock.send_to(&reply(seq, TARGET_1), src).unwrap();
+                        sock.send_to(&joint_reply(seq, TARGET_1), src).unwrap();
                     } else {
-                        sock.send_to(&reply(seq, TARGET_1), src).unwrap();
+                        sock.send_to(&joint_reply(seq, TARGET_1), src).unwrap();
                         junk(vec![0xff; 3]);
                     }
                 }
                 2 if in_session > 40 => {}
                 _ => {
-                    sock.send_to(&reply(seq, TARGET_2), src).unwrap();
+                    sock.send_to(&joint_reply(seq, TARGET_2), src).unwrap();
                 }
             }
         }

@@ -65,6 +65,10 @@ use logger::Logger;
 
 /// Capacity of the event channel from the cycle hook.
 const EVENT_CAPACITY: usize = 1024;
+/// Longest wait for a run to halt at the program's end (robot time; real seconds in real
+/// time). A halt lasts at most the profile's Default Ramp Time (≤ 10 s) or the braking time
+/// at the axis accelerations (well under a second); this only guards against a broken run.
+const HALT_WAIT: Duration = Duration::from_secs(60);
 
 /// What the program's last movement was (the controller glue cannot see the zones).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -553,9 +557,12 @@ impl EgmController {
         if let Some(run) = &self.run {
             if run.result.is_none() {
                 run.control.halt();
-                let waited = handle.wait_until(Condition::Predicate(Box::new(|st| {
-                    st.mode == CoreMode::Planned
-                })));
+                // The halt is bounded by itself (at most the profile's ramp time, or the
+                // braking time at the axis accelerations): `--max-time` must not cut it short.
+                let waited = handle.wait_until_within(
+                    Condition::Predicate(Box::new(|st| st.mode == CoreMode::Planned)),
+                    HALT_WAIT,
+                );
                 if let Err(e) = waited {
                     result = Err(EgmFailure::from(e));
                 }

@@ -269,8 +269,18 @@ impl ControllerHandle {
     /// (or had stopped before), [`ControllerError::NeverSatisfied`] when the robot is idle and
     /// only motion could satisfy the condition, [`ControllerError::Timeout`] after the
     /// configured maximum wait in robot time.
-    pub fn wait_until(&mut self, mut cond: Condition) -> Result<MotionState, ControllerError> {
-        let max_wait = self.max_wait;
+    pub fn wait_until(&mut self, cond: Condition) -> Result<MotionState, ControllerError> {
+        self.wait_until_within(cond, self.max_wait)
+    }
+
+    /// As [`ControllerHandle::wait_until`] with its own maximum wait instead of the
+    /// configured one: for waits whose length the controller itself bounds, such as a stop
+    /// that must not be cut short by `--max-time`.
+    pub fn wait_until_within(
+        &mut self,
+        mut cond: Condition,
+        max_wait: Duration,
+    ) -> Result<MotionState, ControllerError> {
         match &mut self.driver {
             Driver::Virtual(v) => {
                 let limit = v.now().saturating_add(max_wait);
