@@ -41,6 +41,7 @@ fn ctx(signals: Arc<SignalTable>) -> DriverContext {
         robot: Robot::default(),
         signals,
         options: DriverOptions::default(),
+        drops: Default::default(),
     }
 }
 

@@ -404,6 +404,21 @@ mod hostile {
             "{}",
             e.stderr
         );
+        // Every datagram the session did not use is counted by cause; the totals close the run.
+        let totals = dropped_totals(&e.stderr);
+        for cause in [
+            "from another sender than the device's address and port",
+            "truncated",
+            "oversized",
+            "with NaN or infinite values",
+            "out of range",
+        ] {
+            assert!(totals.contains(cause), "{cause} missing: {totals}");
+        }
+        assert!(
+            totals.contains("malformed") || totals.contains("truncated"),
+            "{totals}"
+        );
         // The robot never left its axis ranges and never followed the intruder.
         let t = std::fs::read_to_string(&trace).unwrap();
         let robot = rapidvc::robot::Robot::default();
@@ -422,5 +437,89 @@ mod hostile {
             );
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The `EGM: N datagrams dropped: …` line at the end of a run (its text after `EGM: `).
+    fn dropped_totals(stderr: &str) -> &str {
+        stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("EGM: "))
+            .filter(|l| l.contains("datagrams dropped"))
+            .unwrap_or_else(|| panic!("no totals of dropped datagrams in\n{stderr}"))
+    }
+
+    /// The first number of the totals line (all datagrams dropped).
+    fn dropped_count(totals: &str) -> u64 {
+        totals.split_whitespace().next().unwrap().parse().unwrap()
+    }
+
+    /// The configured sensor never answers; a process on its host at another port answers
+    /// every message (and floods four more datagrams each time). It used to become the
+    /// sensor and steer the robot without an event.
+    #[test]
+    fn a_sender_on_the_sensor_host_at_another_port_never_steers() {
+        let sensor = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let intruder = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let port = sensor.local_addr().unwrap().port();
+        sensor
+            .set_read_timeout(Some(Duration::from_millis(200)))
+            .unwrap();
+        let h = std::thread::spawn(move || {
+            let mut buf = [0u8; 2048];
+            let (mut messages, mut sent) = (0u64, 0u64);
+            let start = Instant::now();
+            let mut last = Instant::now();
+            while start.elapsed() < Duration::from_secs(60)
+                && last.elapsed() < Duration::from_secs(2)
+            {
+                let Ok((n, controller)) = sensor.recv_from(&mut buf) else {
+                    continue;
+                };
+                last = Instant::now();
+                let Ok(m) = proto::EgmRobot::decode(&buf[..n]) else {
+                    continue;
+                };
+                messages += 1;
+                let seq = m.header.and_then(|h| h.seqno).unwrap_or(0);
+                for _ in 0..5 {
+                    intruder
+                        .send_to(&joint_reply(seq, INTRUDER), controller)
+                        .unwrap();
+                    sent += 1;
+                }
+            }
+            (messages, sent)
+        });
+        let e = run_program(
+            "tests/run_egm/silent_sensor.mod",
+            &[format!("--device=sensor=127.0.0.1:{port}")],
+            LIMIT,
+        );
+        let (messages, sent) = h.join().unwrap();
+        assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
+        assert!(messages > 10, "{messages}");
+        // Not steered: the run timed out where it started.
+        let q = printed(&e.stdout, "ERR_UDPUC_COMM at ");
+        assert!(near(&q, &[0.0, 0.0, 0.0, 0.0, 30.0, 0.0], 1e-6), "{q:?}");
+        assert!(
+            e.stderr.contains("event: EGM egm1: 90101 "),
+            "no 90101:\n{}",
+            e.stderr
+        );
+        assert!(e.stderr.contains("41822"), "{}", e.stderr);
+        // All counted: whatever reached the socket before the run ended (a few may still
+        // be in flight then), and nothing for another cause.
+        let totals = dropped_totals(&e.stderr);
+        let dropped = dropped_count(totals);
+        assert!(
+            dropped <= sent && dropped >= sent / 2,
+            "{dropped} of {sent}: {totals}"
+        );
+        assert_eq!(
+            totals,
+            format!(
+                "{dropped} datagrams dropped: {dropped} from another sender than the device's address and port"
+            )
+        );
     }
 }

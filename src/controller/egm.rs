@@ -41,6 +41,7 @@ use crate::egm::registry::{
     RunPlan, SetupLtapp, SetupSignals, SetupUc, StopTarget, StreamPlan,
 };
 use crate::egm::servo::StopMode;
+use crate::egm::session::DropCounts;
 use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
@@ -188,6 +189,9 @@ pub struct EgmSummary {
     pub rows_dropped: u64,
     /// Events lost (nobody took them in time).
     pub events_dropped: u64,
+    /// Datagrams the sessions of every run, stream and path correction did not use, by
+    /// cause.
+    pub datagrams: DropCounts,
 }
 
 /// The program side of EGM (see the module docs).
@@ -238,6 +242,7 @@ impl EgmController {
             robot,
             signals,
             options: setup.driver,
+            drops: Arc::default(),
         };
         let (pathcorr, pathcorr_hook) =
             path_correction_for(&ctx, setup.lockstep, setup.feed.clone(), log_tx.clone());
@@ -594,6 +599,7 @@ impl EgmController {
             rows_dropped: self.shared.rows_dropped.load(Ordering::Relaxed),
             events_dropped: self.shared.events_dropped.load(Ordering::Relaxed),
             rows_written: 0,
+            datagrams: self.ctx.drops.snapshot(),
         };
         if let Some(l) = self.logger {
             summary.rows_written = l.finish()?;

@@ -706,25 +706,49 @@ fn forward_events(session: &mut EgmSession, events: &mut EventQueue) {
     }
 }
 
+/// The session of a run, stream or path-correction link: `mode` with `remote` (accepting
+/// senders per `filter`) at `sample_period`, with the context's options, the robot's
+/// reference bounds, and the controller's drop tally.
+pub(crate) fn open_session(
+    ctx: &DriverContext,
+    instruction: &'static str,
+    mode: EgmMode,
+    link: (std::net::SocketAddr, SourceFilter),
+    sample_period: Duration,
+    comm_timeout: Option<Duration>,
+) -> Result<EgmSession, EgmError> {
+    let opts = &ctx.options;
+    let (remote, filter) = link;
+    let mut config = EgmConfig::new(mode, remote);
+    config.source_filter = filter;
+    config.sample_period = sample_period;
+    config.comm_timeout = comm_timeout;
+    config.queue = opts.queue;
+    config.encode = opts.encode;
+    config.event_repeat = opts.event_repeat;
+    config.limits = robot_limits(&ctx.robot);
+    let mut session = EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+        instruction,
+        detail: e.to_string(),
+    })?;
+    session.share_drops(Arc::clone(&ctx.drops));
+    Ok(session)
+}
+
 fn new_session(
     plan: &RunPlan,
     ctx: &DriverContext,
     remote: std::net::SocketAddr,
     filter: SourceFilter,
 ) -> Result<EgmSession, EgmError> {
-    let opts = &ctx.options;
-    let mut config = EgmConfig::new(plan.mode, remote);
-    config.source_filter = filter;
-    config.sample_period = plan.sample_period;
-    config.comm_timeout = Some(plan.comm_timeout);
-    config.queue = opts.queue;
-    config.encode = opts.encode;
-    config.event_repeat = opts.event_repeat;
-    config.limits = robot_limits(&ctx.robot);
-    EgmSession::new(config).map_err(|e| EgmError::BadSetup {
-        instruction: plan.instruction,
-        detail: e.to_string(),
-    })
+    open_session(
+        ctx,
+        plan.instruction,
+        plan.mode,
+        (remote, filter),
+        plan.sample_period,
+        Some(plan.comm_timeout),
+    )
 }
 
 /// Reference bounds narrowed to the robot's axis ranges.

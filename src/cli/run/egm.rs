@@ -105,9 +105,13 @@ pub fn uses_egm(prog: &crate::ir::Program, sources: &crate::source::SourceMap) -
     })
 }
 
-/// After the controller finished: wait for the EGM log writer; report lockstep counts.
+/// After the controller finished: wait for the EGM log writer; report the datagrams the
+/// sessions dropped (by cause) and the lockstep counts.
 pub fn finish(controller: EgmController, args: &EgmArgs) -> Result<(), String> {
     let summary = controller.finish()?;
+    if summary.datagrams.dropped() > 0 {
+        eprintln!("EGM: {}", summary.datagrams);
+    }
     if args.lockstep && summary.lockstep_waits > 0 {
         eprintln!(
             "lockstep: {} replies awaited, {} timed out (--lockstep-timeout {} ms)",
