@@ -53,6 +53,18 @@ fn simulated(e: &Ended) -> f64 {
     line.split_whitespace().nth(1).unwrap().parse().unwrap()
 }
 
+/// The cycles of the summary line (`…, 1373 cycles; final joints …`).
+fn summary_cycles(e: &Ended) -> u64 {
+    let line = e
+        .stderr
+        .lines()
+        .find(|l| l.starts_with("simulated"))
+        .unwrap();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let at = words.iter().position(|w| w.starts_with("cycles")).unwrap();
+    words[at - 1].parse().unwrap()
+}
+
 mod manual {
     use super::*;
 
@@ -521,5 +533,43 @@ mod hostile {
                 "{dropped} datagrams dropped: {dropped} from another sender than the device's address and port"
             )
         );
+    }
+
+    /// Lockstep with a sensor that never answers: each cycle waits `--lockstep-timeout` for a
+    /// reply until the comm time-out is declared (0.3 s of robot time, 75 cycles), and none
+    /// after it: the ramp-out (0.5 s, 125 cycles) used to wait on every cycle too. Counted in
+    /// waits, not wall seconds.
+    #[test]
+    fn lockstep_stops_waiting_once_the_comm_timeout_is_declared() {
+        let dead = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let port = dead.local_addr().unwrap().port();
+        let e = run_program(
+            "tests/run_egm/silent_sensor.mod",
+            &[
+                format!("--device=sensor=127.0.0.1:{port}"),
+                "--lockstep".into(),
+                "--lockstep-timeout=20".into(),
+            ],
+            LIMIT,
+        );
+        drop(dead);
+        assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
+        assert!(e.stdout.contains("ERR_UDPUC_COMM at "), "{}", e.stdout);
+        let line = e
+            .stderr
+            .lines()
+            .find(|l| l.starts_with("lockstep: "))
+            .unwrap_or_else(|| panic!("no lockstep line in\n{}", e.stderr));
+        let n: Vec<u64> = line
+            .split_whitespace()
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        let (waits, timeouts) = (n[0], n[1]);
+        assert_eq!(waits, timeouts, "{line}");
+        // One wait per EGM message until 0.3 s without a reply: 75 (give or take one).
+        assert!((74..=77).contains(&waits), "{line}");
+        // The run went on for the 0.5 s ramp-out without waiting.
+        let cycles = summary_cycles(&e);
+        assert!(cycles >= waits + 125, "{cycles} cycles, {line}");
     }
 }

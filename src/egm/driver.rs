@@ -59,7 +59,8 @@
 //! replying once per received message, which all four tested clients do (abb_libegm,
 //! abb_robot_client, ABBRobotEGM, abbegm); a sensor that sends on its own timer instead
 //! makes every message wait for the time-out. Clients that check `header.tm` against real
-//! time (abb_libegm's `isConnected`) see virtual milliseconds.
+//! time (abb_libegm's `isConnected`) see virtual milliseconds. Once the comm time-out has
+//! been declared (41822) nothing is awaited any more: the ramp-out runs without waits.
 //!
 //! Nothing here panics, and `tick` neither sleeps nor blocks (the UDP socket is
 //! non-blocking); it allocates only for event texts, and in pose mode inside the IK.
@@ -524,9 +525,19 @@ impl EgmDriver {
         }
     }
 
-    /// Lockstep: a message went to an external sensor and no valid reply came yet.
+    /// Lockstep: a message went to an external sensor and no valid reply came yet. Never
+    /// once the comm time-out was declared (41822): the sensor is taken for dead, and the
+    /// ramp-out after it runs at the pace of virtual time, not of a wait per cycle.
     pub fn awaiting_reply(&self) -> bool {
-        self.awaiting && self.outcome.is_none()
+        self.awaiting && self.outcome.is_none() && !self.comm_timed_out()
+    }
+
+    /// True once the session's comm time-out expired (event 41822).
+    fn comm_timed_out(&self) -> bool {
+        match &self.link {
+            Link::Session { session, .. } => session.comm_timed_out(),
+            Link::Signals { .. } => false,
+        }
     }
 
     /// Lockstep: blocks up to `timeout` (real time) for the reply to the last message and

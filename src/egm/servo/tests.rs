@@ -577,7 +577,10 @@ fn every_stop_starts_from_the_applied_speed() {
         let o = servo.step(&input);
         let first = (o.commanded[5] - q[5]) / 0.004;
         assert!(first <= v + 1e-9, "stop {stop}: {v} → {first}");
-        assert!((v - first) / 0.004 <= 3333.0 + 1e-6, "stop {stop}: {v} → {first}");
+        assert!(
+            (v - first) / 0.004 <= 3333.0 + 1e-6,
+            "stop {stop}: {v} → {first}"
+        );
     }
 }
 
@@ -622,7 +625,12 @@ fn brakes_are_bounded_by_acceleration_and_by_the_reference() {
     servo.halt(Duration::from_secs(2));
     let (speeds, rest) = speeds_until_done(&mut servo, q, &input);
     assert!(speeds.len() < 500, "{}", speeds.len());
-    assert!(rest[0] > q[0] && rest[0] <= far[0], "{} → {}", q[0], rest[0]);
+    assert!(
+        rest[0] > q[0] && rest[0] <= far[0],
+        "{} → {}",
+        q[0],
+        rest[0]
+    );
 }
 
 /// RAMP_DOWN returns within \RampOutTime when it can, and takes longer when
@@ -648,7 +656,11 @@ fn ramp_down_return_respects_max_speed_deviation_and_acceleration() {
     let (speeds, rest) = speeds_until_done(&mut servo, q, &input);
     assert_eq!(rest, START);
     // 20° at ≤ 20 °/s along a cosine: at least π/2 s, not 0.1 s.
-    assert!(speeds.len() as f64 * 0.004 >= std::f64::consts::FRAC_PI_2, "{}", speeds.len());
+    assert!(
+        speeds.len() as f64 * 0.004 >= std::f64::consts::FRAC_PI_2,
+        "{}",
+        speeds.len()
+    );
     let mut prev = speeds[0][0];
     for v in &speeds {
         assert!(v[0].abs() <= 20.0 + 1e-9, "{}", v[0]);
