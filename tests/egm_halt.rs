@@ -1,5 +1,10 @@
 //! Every way an EGM run ends brings the robot to rest from the speed it has: checked on the `--trace` rows of `rapidvc run` (per-cycle joint speeds and accelerations) and the `--egm-log` (the cycle the stop began, the last reference). A property over the reference, `\MaxSpeedDeviation`, `\RampInTime` and the moment of the stop for each end cause — EGMStop HOLD and RAMP_DOWN, convergence with either stop mode, a program `Stop` from a TRAP, `EGMReset`, a run-time error, `--max-time`, the end of the program after `\NoWaitCond`, and a sensor that falls silent (41822) — plus the reproductions of issue 10.
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::needless_range_loop
+)]
 
 #[path = "support/csv.rs"]
 mod csv;
@@ -236,6 +241,7 @@ struct Row {
     t: f64,
     q: [f64; 6],
     egm: String,
+    instr: String,
 }
 
 /// One `--egm-log` row.
@@ -256,13 +262,19 @@ fn six(row: &[String], first: usize) -> Option<[f64; 6]> {
 
 fn read_trace(path: &Path) -> Vec<Row> {
     let c = Csv::read(path);
-    let (t, j1, egm) = (c.col("time_s"), c.col("j1"), c.col("egm_state"));
+    let (t, j1, egm, instr) = (
+        c.col("time_s"),
+        c.col("j1"),
+        c.col("egm_state"),
+        c.col("instr"),
+    );
     c.rows
         .iter()
         .map(|r| Row {
             t: r[t].parse().unwrap(),
             q: six(r, j1).unwrap(),
             egm: r[egm].clone(),
+            instr: r[instr].clone(),
         })
         .collect()
 }
@@ -627,5 +639,121 @@ ENDMODULE
         assert_eq!(out.ended.code, Some(0), "{}", out.ended.stderr);
         assert!(out.ended.stderr.contains("program stopped (Stop)"));
         check(&out, 20.0, false, true).unwrap();
+    }
+}
+
+/// Path correction (EGMMoveL): a sensor that falls silent and a program stop both used to
+/// freeze the robot from path speed in one cycle; it brakes within the axis accelerations.
+mod path_correction {
+    use super::*;
+
+    const PROGRAM: &str = "MODULE PathStop
+  PERS tooldata tTorch := [TRUE,[[0,0,200],[1,0,0,0]],[1,[0,0,100],[1,0,0,0],0,0,0]];
+  VAR egmident egmId1;
+  VAR intnum tmr;
+  CONST robtarget pStart := [[1000,20,500],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
+  CONST robtarget pEnd := [[1400,20,500],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
+  PROC main()
+    EGMGetId egmId1;
+    EGMSetupUC ROB_1, egmId1, \"pathCorr\", \"UCdevice\" \\PathCorr \\APTR \\CommTimeout:=0.5;
+    EGMActMove egmId1, tTorch.tframe;
+    MoveJ pStart, v1000, fine, tTorch;
+    STOP_TIMER
+    EGMMoveL egmId1, pEnd, v200, fine, tTorch;
+    TPWrite \"not reached\";
+  ERROR
+    IF ERRNO = ERR_UDPUC_COMM THEN
+      TPWrite \"ERR_UDPUC_COMM handled\";
+      RETURN;
+    ENDIF
+  ENDPROC
+  TRAP stopper
+    Stop;
+  ENDTRAP
+ENDMODULE
+";
+
+    /// From the last cycle of the EGMMoveL at its path speed on: every axis slows down
+    /// within its acceleration to rest, never speeding up.
+    fn check_brake(out: &Outcome) {
+        let accel = Robot::default().model().max_accel;
+        let rows = &out.trace;
+        let speed = |i: usize| speed(&rows[i - 1], &rows[i]);
+        let norm = |v: [f64; 6]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let corrected: Vec<usize> = (1..rows.len())
+            .filter(|i| rows[*i].instr == "EGMMoveL")
+            .collect();
+        let cruise = corrected
+            .iter()
+            .map(|i| norm(speed(*i)))
+            .fold(0.0, f64::max);
+        let s = *corrected
+            .iter()
+            .rfind(|i| norm(speed(**i)) >= 0.98 * cruise)
+            .unwrap();
+        assert!(
+            s + 1 < rows.len(),
+            "the trace ends at path speed: the robot was frozen in one cycle"
+        );
+        let mut previous = speed(s);
+        for i in s + 1..rows.len() {
+            let v = speed(i);
+            for j in 0..6 {
+                let a = (v[j] - previous[j]) / DT;
+                assert!(
+                    a.abs() <= accel[j] * (1.0 + 1e-6) + TOL_A,
+                    "J{} at {a:.0} °/s² at t={:.3}: {:.3} → {:.3} °/s",
+                    j + 1,
+                    rows[i].t,
+                    previous[j],
+                    v[j]
+                );
+                assert!(
+                    v[j].abs() <= previous[j].abs() + TOL_V,
+                    "J{} speeds up",
+                    j + 1
+                );
+            }
+            previous = v;
+        }
+        assert_eq!(previous, [0.0; 6], "at rest at the end");
+    }
+
+    /// Runs the program with `timer` (the TRAP's ITimer, or nothing) and `args`.
+    fn run_path(timer: &str, args: &[String]) -> Outcome {
+        let text = PROGRAM.replace("STOP_TIMER", timer);
+        let config = procs::root().join("tests/run/pathcorr");
+        let mut all = vec![format!("--config={}", config.display())];
+        all.extend_from_slice(args);
+        run(&text, &all)
+    }
+
+    #[test]
+    fn a_sensor_that_falls_silent_brakes_the_corrected_move() {
+        let dead = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let port = dead.local_addr().unwrap().port();
+        let out = run_path(
+            "",
+            &[
+                format!("--device=UCdevice=127.0.0.1:{port}"),
+                "--lockstep".into(),
+                "--lockstep-timeout=5".into(),
+            ],
+        );
+        drop(dead);
+        assert_eq!(out.ended.code, Some(0), "{}", out.ended.stderr);
+        assert!(out.ended.stdout.contains("ERR_UDPUC_COMM handled"));
+        check_brake(&out);
+    }
+
+    #[test]
+    fn a_program_stop_brakes_the_corrected_move() {
+        let out = run_path(
+            "CONNECT tmr WITH stopper;\n    ITimer \\Single, 1, tmr;",
+            &["--device=UCdevice=builtin:pathcorr:y=3,z=-2".into()],
+        );
+        assert_eq!(out.ended.code, Some(0), "{}", out.ended.stderr);
+        assert!(out.ended.stderr.contains("program stopped (Stop)"));
+        check_brake(&out);
     }
 }

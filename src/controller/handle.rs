@@ -340,12 +340,24 @@ impl ControllerHandle {
         }
     }
 
-    /// Stop the robot now: drop queued and active moves and hold.
+    /// Stop the robot: drop queued and active moves and let it brake to rest (the
+    /// executor's stops: a few cycles, as quickly as the axis accelerations allow).
     pub fn stop_motion(&mut self) {
         match &mut self.driver {
-            Driver::Virtual(v) => v.core.stop(),
+            Driver::Virtual(v) => {
+                v.core.stop();
+                // A brake from top speed lasts well under a second; the bound only guards
+                // against a bug turning this into a hang.
+                for _ in 0..100_000 {
+                    if !v.core.state().moving {
+                        break;
+                    }
+                    v.tick(&mut self.events);
+                }
+                v.core.plan_from_here();
+            }
             Driver::RealTime(r) => {
-                let _ = r.control.send(Control::Clear);
+                let _ = r.control.send(Control::Stop);
                 let _ = Self::settle(r, |p| !p.state.moving && p.state.pending == 0);
                 let joints = r.published().state.setpoint.joints;
                 r.planner.set_start(joints);

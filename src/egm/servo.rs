@@ -442,7 +442,7 @@ impl EgmServo {
         let Some(brake) = self.brake.as_mut() else {
             return (0, true);
         };
-        let (v, done) = brake.next();
+        let (v, done) = brake.step();
         *velocity = v;
         if done {
             self.brake = None;

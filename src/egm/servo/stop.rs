@@ -26,41 +26,8 @@ use std::time::Duration;
 
 use super::ServoParams;
 use crate::egm::types::{Joints, ROBOT_AXES};
-
-/// Most steps of one stop phase (keeps the arithmetic finite for absurd inputs).
-const MAX_STEPS: f64 = 1.0e9;
-/// Relative slack for rounding step counts (a bound met exactly is met).
-const ROUNDING: f64 = 1.0e-9;
-
-/// A linear deceleration of all axes together from `from` to rest in `steps` steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Brake {
-    from: Joints,
-    steps: u64,
-    taken: u64,
-}
-
-impl Brake {
-    /// A brake from the speed `from` (degrees/s) over `steps` steps (at least one).
-    pub(super) fn new(from: Joints, steps: u64) -> Brake {
-        Brake {
-            from,
-            steps: steps.max(1),
-            taken: 0,
-        }
-    }
-
-    /// The speed of the next step, and whether it is the last one (the speed is zero then).
-    pub(super) fn next(&mut self) -> (Joints, bool) {
-        self.taken = self.taken.saturating_add(1).min(self.steps);
-        let left = (self.steps - self.taken) as f64 / self.steps as f64;
-        let mut v = [0.0; ROBOT_AXES];
-        for (v, f) in v.iter_mut().zip(&self.from) {
-            *v = f * left;
-        }
-        (v, self.taken >= self.steps)
-    }
-}
+pub(super) use crate::motion::brake::Brake;
+use crate::motion::brake::{count, fewest_steps, most_steps};
 
 /// Where a stop starts: the commanded position, the speed of the last step, the start of
 /// the run and the reference in force (none before one arrived).
@@ -78,23 +45,14 @@ pub(super) struct StopFrom<'a> {
 /// Steps of the brake from `from.speed` to rest (module docs): `nominal` (at least one
 /// step) within the acceleration and distance bounds of `p`, with steps of `ts` seconds.
 pub(super) fn brake_steps(p: &ServoParams, ts: f64, from: &StopFrom<'_>, nominal: Duration) -> u64 {
-    let nominal = count(nominal.as_secs_f64() / ts);
-    let mut least = 1.0f64;
-    let mut most = MAX_STEPS;
-    for i in 0..ROBOT_AXES {
-        let v = from.speed.get(i).copied().unwrap_or(0.0);
-        let speed = v.abs();
-        if !(speed > 0.0 && speed.is_finite()) {
-            continue;
-        }
-        if let Some(a) = p.axis_accel.and_then(|a| a.get(i).copied()) {
-            least = least.max(count(speed / (a * ts)));
-        }
-        let room = room(p, i, v.signum(), from);
-        most = most.min((1.0 + 2.0 * room / (speed * ts) * (1.0 + ROUNDING)).floor());
+    let least = p.axis_accel.map_or(1, |a| fewest_steps(from.speed, &a, ts));
+    let mut most = u64::MAX;
+    for (i, v) in from.speed.iter().enumerate().take(ROBOT_AXES) {
+        most = most.min(most_steps(*v, room(p, i, v.signum(), from), ts));
     }
-    let n = nominal.min(count(most)).max(count(least));
-    n as u64
+    (count(nominal.as_secs_f64() / ts) as u64)
+        .min(most)
+        .max(least)
 }
 
 /// How far axis `i`, moving in direction `dir`, may still travel: to the last reference
@@ -140,14 +98,4 @@ pub(super) fn return_steps(
         time = time.max(PI * farthest / (2.0 * p.max_speed_deviation));
     }
     count(time / ts) as u64
-}
-
-/// A step count from a real number of steps: rounded up (a count a hair above a whole
-/// number, from rounding, is that number), at least 1, at most [`MAX_STEPS`] (NaN counts
-/// as 1).
-fn count(steps: f64) -> f64 {
-    if steps.is_nan() {
-        return 1.0;
-    }
-    (steps * (1.0 - ROUNDING)).ceil().clamp(1.0, MAX_STEPS)
 }
