@@ -25,8 +25,9 @@
 //!   this also ends the EGMRun… the TRAP interrupted.
 //! * A run started with `\NoWaitCond` that ends with an error reports it (always fatal) at
 //!   EGMWaitCond, at the next EGM instruction, or at the end of the program.
-//! * Program end or stop: a run still active ramps out over the profile's Default Ramp Time
-//!   ([`EgmController::program_stopped`]); streams end.
+//! * Program end or stop: a run still active brakes to rest (`egm::servo`: from its speed,
+//!   within MaxSpeedDeviation and the axis accelerations, short of the reference;
+//!   [`EgmController::program_stopped`]); streams end.
 //! * Lockstep (virtual time only): after each message to an external sensor the cycle waits
 //!   (real time, up to the per-message time-out) for the sensor's reply.
 
@@ -304,7 +305,7 @@ impl EgmController {
         Ok(())
     }
 
-    /// `EGMReset` (harmless when `name` is not reserved). A run of the identity ramps out
+    /// `EGMReset` (harmless when `name` is not reserved). A run of the identity brakes
     /// (the EGMRun… waiting for it returns); a stream ends.
     pub fn reset(&mut self, handle: &mut ControllerHandle, name: &str) -> Result<(), EgmFailure> {
         self.poll()?;
@@ -552,8 +553,8 @@ impl EgmController {
 
     // ----- program end -----
 
-    /// The program ended or stopped: a run still active ramps out (the profile's Default
-    /// Ramp Time) and this waits for it; streams end. Returns the error of a `\NoWaitCond`
+    /// The program ended or stopped: a run still active brakes to rest and this waits for
+    /// it; streams end. Returns the error of a `\NoWaitCond`
     /// run nobody waited for.
     pub fn program_stopped(&mut self, handle: &mut ControllerHandle) -> Result<(), EgmFailure> {
         self.shared.rapid_stopped.store(true, Ordering::Relaxed);

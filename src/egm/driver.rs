@@ -26,8 +26,8 @@
 //!    the sensor pose into joints with [`PoseGuidance::joint_target`] (IK nearest to
 //!    `current`, supervised) and `speedRef.cartesians` into joint speeds through the
 //!    Jacobian. A reference that cannot be reached (50050), needs an axis beyond its limit
-//!    (50027) or lies close to a singularity (50026) ends the run with that error: the EGM
-//!    speed ramps to zero over the profile's ramp time, then `finished` is `Err`. A joint
+//!    (50027) or lies close to a singularity (50026) ends the run with that error: the robot
+//!    brakes as for a program stop (`egm::servo`), then `finished` is `Err`. A joint
 //!    reference beyond an axis limit is dropped with event 90105 ("input out of bounds") and
 //!    the previous one stays in force.
 //! 3. Servo step ([`EgmServo`]): the control law, MaxSpeedDeviation (event 90110 when it
@@ -43,9 +43,8 @@
 //!    `\CondTime` → the stop mode runs (HOLD settles, RAMP_DOWN returns to the start) →
 //!    `finished` = `Ok(EgmEnd::Converged)`. Convergence only counts once a reference
 //!    arrived.
-//! 6. Comm time-out: no valid sensor message within `\CommTimeout` → the EGM speed ramps out
-//!    over the profile's ramp time → `Err(EgmError::CommTimeout)` (event 41822,
-//!    `ERR_UDPUC_COMM`).
+//! 6. Comm time-out: no valid sensor message within `\CommTimeout` → the robot brakes as
+//!    for a program stop → `Err(EgmError::CommTimeout)` (event 41822, `ERR_UDPUC_COMM`).
 //!
 //! `finished` is reported on exactly one tick ([`EgmDriver::outcome`] keeps it). The events
 //! of [`EgmDriver::poll_event`] never repeat the error in `finished`.
@@ -512,9 +511,9 @@ impl EgmDriver {
         }
     }
 
-    /// Program stop: the EGM speed ramps to zero over the profile's Default Ramp Time while
-    /// the robot keeps sending with RAPID_STOPPED and MCI_STOPPED; then `finished` is
-    /// `Ok(EgmEnd::Halted)`.
+    /// Program stop: the robot brakes from its speed (over the profile's Default Ramp Time
+    /// at most, sooner near the reference: `egm::servo`) while the driver keeps sending with
+    /// RAPID_STOPPED and MCI_STOPPED; then `finished` is `Ok(EgmEnd::Halted)`.
     pub fn halt(&mut self) {
         if self.outcome.is_none() {
             self.exec = RapidExecState::Stopped;
@@ -666,7 +665,7 @@ impl EgmDriver {
         }
     }
 
-    /// Ends the run with `err` after ramping the EGM speed out (first error wins).
+    /// Ends the run with `err` after braking to rest (first error wins).
     fn fail(&mut self, err: EgmError) {
         if self.error.is_some()
             || !matches!(
