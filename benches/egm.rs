@@ -298,6 +298,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
         robot: Robot::default(),
         signals: table,
         options: DriverOptions::default(),
+        drops: Default::default(),
     };
     let start = [0.0, 10.0, 10.0, 0.0, 40.0, 0.0];
     let source = EgmSource::open(&plan.source).unwrap();

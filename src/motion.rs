@@ -10,6 +10,7 @@
 //! itself only copies preplanned samples, checks them and hands over into corner paths.
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+pub mod brake;
 pub mod clock;
 pub mod core;
 pub mod correction;

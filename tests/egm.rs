@@ -167,7 +167,7 @@ mod loopback {
 
     #[test]
     fn a_second_sender_and_another_ip_are_dropped_counted_and_reported_once() {
-        let (c, other_ip) = hostile_run(SourceFilter::RemoteIp);
+        let (c, other_ip) = hostile_run(SourceFilter::Remote);
         let st = c.session.stats();
         let expected = if other_ip { 400 } else { 300 };
         assert!(st.wrong_source >= expected - 10, "{st:?}");

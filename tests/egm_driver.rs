@@ -41,6 +41,7 @@ fn ctx(signals: Arc<SignalTable>) -> DriverContext {
         robot: Robot::default(),
         signals,
         options: DriverOptions::default(),
+        drops: Default::default(),
     }
 }
 
@@ -256,9 +257,12 @@ mod builtin {
         // Program stop: ramps out over the profile's 0.5 s.
         let plan = reg.run_joint(id, &args, ALL_J).unwrap();
         let mut driver = start_at_zero(&ctx, &plan);
+        let (mut before, mut at) = (START, START);
         for k in 0..100u32 {
-            driver.tick(TICK * k, &START);
+            before = at;
+            at = driver.tick(TICK * k, &at).joints_cmd;
         }
+        let reference = driver.tracking().0.unwrap();
         driver.halt();
         let run = drive(&mut driver, TICK * 100, 2000, false);
         assert_eq!(run.result, Ok(EgmEnd::Halted));
@@ -267,7 +271,29 @@ mod builtin {
             .iter()
             .filter(|t| t.phase == ServoPhase::Halting)
             .count();
-        assert!((124..=126).contains(&halting), "{halting}");
+        // At most the profile's 0.5 s; shorter here, where the moving sine reference is
+        // closer than a 0.5 s ramp would carry the robot.
+        assert!((2..=126).contains(&halting), "{halting}");
+        // J1 slows down from the speed it had, every step, and rests short of the reference.
+        let dt = TICK.as_secs_f64();
+        let mut speed = (at[0] - before[0]) / dt;
+        let mut q = at[0];
+        assert!(speed.abs() > 1.0, "J1 was moving: {speed}");
+        for t in &run.ticks {
+            let v = (t.joints_cmd[0] - q) / dt;
+            assert!(
+                v * speed >= 0.0 && v.abs() <= speed.abs() + 1e-9,
+                "{v} after {speed}"
+            );
+            (speed, q) = (v, t.joints_cmd[0]);
+        }
+        assert_eq!(speed, 0.0);
+        let ahead = (reference[0] - at[0]).signum();
+        assert!(
+            (reference[0] - q) * ahead >= 0.0,
+            "{q} passed {}",
+            reference[0]
+        );
         assert!(
             run.ticks
                 .iter()

@@ -1047,7 +1047,7 @@ mod settings_and_guidance {
     use super::*;
     use rapidvc::motion::{
         EnqueueError, ExternalGuidance, GuidanceStep, MotionError, MotionSettings, RobotTime,
-        Severity, SingArea,
+        Setpoint, Severity, SingArea,
     };
     use rapidvc::robot::{JointsDeg, Robot, ToolData, pose_to_pos_quat};
 
@@ -1222,6 +1222,99 @@ mod settings_and_guidance {
             core.enqueue(abs_j(5, [1.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
                 .is_ok()
         );
+    }
+
+    /// Jogs axis 1 at `steps[k]` degrees in cycle k, then ends.
+    struct Schedule {
+        steps: Vec<f64>,
+    }
+
+    impl ExternalGuidance for Schedule {
+        fn step(&mut self, _now: RobotTime, current: &JointsDeg) -> GuidanceStep {
+            if self.steps.is_empty() {
+                return GuidanceStep::Finished;
+            }
+            let mut q = *current;
+            q[0] += self.steps.remove(0);
+            GuidanceStep::MoveTo(q)
+        }
+    }
+
+    /// Axis speeds (deg/s) of consecutive setpoints.
+    fn speeds(sps: &[Setpoint]) -> Vec<JointsDeg> {
+        sps.windows(2)
+            .map(|w| std::array::from_fn(|i| (w[1].joints[i] - w[0].joints[i]) / 0.004))
+            .collect()
+    }
+
+    /// A motion error while the robot moves at 125 °/s does not freeze it in one cycle: it
+    /// brakes within axis 1's 700 °/s² (45 cycles), and the core halts once at rest.
+    #[test]
+    fn a_motion_error_brakes_to_rest_within_the_accelerations_then_halts() {
+        let mut core = core_at(START);
+        let mut steps = vec![0.5; 20];
+        steps.push(2.0);
+        core.start_external(Box::new(Schedule { steps }), ToolData::tool0(), None)
+            .unwrap();
+        let mut sps = vec![core.state().setpoint];
+        for tick in 1..=100u64 {
+            sps.push(core.tick(RobotTime::from_nanos(tick * 4_000_000)));
+        }
+        let ev = core.take_event().unwrap();
+        assert!(
+            matches!(ev.error, MotionError::JointSpeed { joint: 1, .. }),
+            "{ev}"
+        );
+        let v = speeds(&sps);
+        assert!((v[19][0] - 125.0).abs() < 1e-9, "{:?}", v[19]);
+        let accel = Robot::default().model().max_accel[0];
+        for w in v[19..].windows(2) {
+            assert!(w[1][0] <= w[0][0] + 1e-9, "{} → {}", w[0][0], w[1][0]);
+            assert!((w[0][0] - w[1][0]) / 0.004 <= accel + 1e-6);
+        }
+        let rest = 20 + v[20..].iter().position(|v| v[0] == 0.0).unwrap();
+        assert_eq!(rest - 20, 44, "45 braking cycles, the last at rest");
+        assert!(sps[rest + 1].standstill);
+        assert!(core.state().halted);
+    }
+
+    /// A program stop during a planned move brakes within the accelerations; the core is
+    /// not halted and plans the next move from where the robot came to rest.
+    #[test]
+    fn stop_brakes_a_planned_move_and_planning_resumes_there() {
+        let mut core = core_at(START);
+        core.enqueue(abs_j(1, [90.0, 0.0, 0.0, 0.0, 35.0, 0.0], 1000.0, 0.0))
+            .unwrap();
+        let mut sps = vec![core.state().setpoint];
+        let mut tick = 0u64;
+        for _ in 0..100 {
+            tick += 1;
+            sps.push(core.tick(RobotTime::from_nanos(tick * 4_000_000)));
+        }
+        let cruise = speeds(&sps).last().unwrap()[0];
+        assert!(cruise > 50.0, "{cruise}");
+        core.stop();
+        while core.state().moving {
+            tick += 1;
+            sps.push(core.tick(RobotTime::from_nanos(tick * 4_000_000)));
+            assert!(sps.len() < 400, "the brake never ended");
+        }
+        core.plan_from_here();
+        let accel = Robot::default().model().max_accel;
+        let v = speeds(&sps);
+        for w in v[99..].windows(2) {
+            for i in 0..6 {
+                assert!(w[1][i].abs() <= w[0][i].abs() + 1e-9);
+                assert!((w[0][i] - w[1][i]).abs() / 0.004 <= accel[i] + 1e-6);
+            }
+        }
+        let st = core.state();
+        assert!(!st.halted && st.setpoint.standstill);
+        let here = st.setpoint.joints;
+        assert!(here[0] > sps[100].joints[0] && here[0] < 90.0, "{here:?}");
+        let more = run_all(&mut core, vec![abs_j(2, START, 1000.0, 0.0)]);
+        let first = more.first().unwrap().joints;
+        assert!((first[0] - here[0]).abs() < 1.0, "{first:?} after {here:?}");
     }
 
     /// Feeds the running `Jog` a new step before every cycle and counts cycles.

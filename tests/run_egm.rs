@@ -1,12 +1,15 @@
 //! EGM through `rapidvc run`: the manual's examples with one command, the failure modes as RAPID sees them, `\NoWaitCond`/EGMWaitCond/EGMStop, position streams to a UDP receiver, trace and `--egm-log` output, and a hostile sensor (garbage datagrams, NaN and out-of-range references, a second sender, silence) against which the session survives or ends with ERR_UDPUC_COMM and the robot never leaves its limits. Every test ends by itself (bounded waits, children killed on drop).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+#[path = "support/egm_wire.rs"]
+mod egm_wire;
 #[path = "support/procs.rs"]
 mod procs;
 
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
 
+use egm_wire::joint_reply;
 use procs::{Ended, near, printed, run_program};
 use prost::Message;
 use rapidvc::egm::proto;
@@ -48,6 +51,18 @@ fn simulated(e: &Ended) -> f64 {
         .find(|l| l.starts_with("simulated"))
         .unwrap();
     line.split_whitespace().nth(1).unwrap().parse().unwrap()
+}
+
+/// The cycles of the summary line (`…, 1373 cycles; final joints …`).
+fn summary_cycles(e: &Ended) -> u64 {
+    let line = e
+        .stderr
+        .lines()
+        .find(|l| l.starts_with("simulated"))
+        .unwrap();
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let at = words.iter().position(|w| w.starts_with("cycles")).unwrap();
+    words[at - 1].parse().unwrap()
 }
 
 mod manual {
@@ -260,24 +275,6 @@ mod hostile {
     const TARGET_2: [f64; 6] = [-10.0, 5.0, 10.0, 0.0, 35.0, -20.0];
     const INTRUDER: [f64; 6] = [-40.0, 30.0, -30.0, 60.0, -60.0, 90.0];
 
-    fn reply(seq: u32, joints: [f64; 6]) -> Vec<u8> {
-        proto::EgmSensor {
-            header: Some(proto::EgmHeader {
-                seqno: Some(seq),
-                tm: Some(seq * 4),
-                mtype: Some(proto::egm_header::MessageType::MsgtypeCorrection as i32),
-            }),
-            planned: Some(proto::EgmPlanned {
-                joints: Some(proto::EgmJoints {
-                    joints: joints.to_vec(),
-                }),
-                ..Default::default()
-            }),
-            ..Default::default()
-        }
-        .encode_to_vec()
-    }
-
     struct Report {
         sessions: u32,
         received: u32,
@@ -333,7 +330,7 @@ mod hostile {
                         junk((0..(next() % 200)).map(|_| next() as u8).collect());
                     }
                     if k.is_multiple_of(11) {
-                        let mut t = reply(seq, TARGET_1);
+                        let mut t = joint_reply(seq, TARGET_1);
                         t.truncate(t.len() / 2);
                         junk(t);
                     }
@@ -341,23 +338,26 @@ mod hostile {
                         junk(vec![0x0a; 4000]);
                     }
                     if k.is_multiple_of(17) {
-                        junk(reply(seq, [f64::NAN, 0.0, 0.0, 0.0, f64::INFINITY, 0.0]));
+                        junk(joint_reply(
+                            seq,
+                            [f64::NAN, 0.0, 0.0, 0.0, f64::INFINITY, 0.0],
+                        ));
                     }
                     if k.is_multiple_of(19) {
-                        junk(reply(seq, [1000.0, 0.0, 0.0, 0.0, 30.0, 0.0]));
+                        junk(joint_reply(seq, [1000.0, 0.0, 0.0, 0.0, 30.0, 0.0]));
                     }
-                    intruder.send_to(&reply(seq, INTRUDER), src).unwrap();
+                    intruder.send_to(&joint_reply(seq, INTRUDER), src).unwrap();
                     if k % 5 != 3 {
                         // Mostly the real reply last, sometimes before the garbage.
-                        sock.send_to(&reply(seq, TARGET_1), src).unwrap();
+                        sock.send_to(&joint_reply(seq, TARGET_1), src).unwrap();
                     } else {
-                        sock.send_to(&reply(seq, TARGET_1), src).unwrap();
+                        sock.send_to(&joint_reply(seq, TARGET_1), src).unwrap();
                         junk(vec![0xff; 3]);
                     }
                 }
                 2 if in_session > 40 => {}
                 _ => {
-                    sock.send_to(&reply(seq, TARGET_2), src).unwrap();
+                    sock.send_to(&joint_reply(seq, TARGET_2), src).unwrap();
                 }
             }
         }
@@ -416,6 +416,21 @@ mod hostile {
             "{}",
             e.stderr
         );
+        // Every datagram the session did not use is counted by cause; the totals close the run.
+        let totals = dropped_totals(&e.stderr);
+        for cause in [
+            "from another sender than the device's address and port",
+            "truncated",
+            "oversized",
+            "with NaN or infinite values",
+            "out of range",
+        ] {
+            assert!(totals.contains(cause), "{cause} missing: {totals}");
+        }
+        assert!(
+            totals.contains("malformed") || totals.contains("truncated"),
+            "{totals}"
+        );
         // The robot never left its axis ranges and never followed the intruder.
         let t = std::fs::read_to_string(&trace).unwrap();
         let robot = rapidvc::robot::Robot::default();
@@ -434,5 +449,127 @@ mod hostile {
             );
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The `EGM: N datagrams dropped: …` line at the end of a run (its text after `EGM: `).
+    fn dropped_totals(stderr: &str) -> &str {
+        stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("EGM: "))
+            .filter(|l| l.contains("datagrams dropped"))
+            .unwrap_or_else(|| panic!("no totals of dropped datagrams in\n{stderr}"))
+    }
+
+    /// The first number of the totals line (all datagrams dropped).
+    fn dropped_count(totals: &str) -> u64 {
+        totals.split_whitespace().next().unwrap().parse().unwrap()
+    }
+
+    /// The configured sensor never answers; a process on its host at another port answers
+    /// every message (and floods four more datagrams each time). It used to become the
+    /// sensor and steer the robot without an event.
+    #[test]
+    fn a_sender_on_the_sensor_host_at_another_port_never_steers() {
+        let sensor = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let intruder = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let port = sensor.local_addr().unwrap().port();
+        sensor
+            .set_read_timeout(Some(Duration::from_millis(200)))
+            .unwrap();
+        let h = std::thread::spawn(move || {
+            let mut buf = [0u8; 2048];
+            let (mut messages, mut sent) = (0u64, 0u64);
+            let start = Instant::now();
+            let mut last = Instant::now();
+            while start.elapsed() < Duration::from_secs(60)
+                && last.elapsed() < Duration::from_secs(2)
+            {
+                let Ok((n, controller)) = sensor.recv_from(&mut buf) else {
+                    continue;
+                };
+                last = Instant::now();
+                let Ok(m) = proto::EgmRobot::decode(&buf[..n]) else {
+                    continue;
+                };
+                messages += 1;
+                let seq = m.header.and_then(|h| h.seqno).unwrap_or(0);
+                for _ in 0..5 {
+                    intruder
+                        .send_to(&joint_reply(seq, INTRUDER), controller)
+                        .unwrap();
+                    sent += 1;
+                }
+            }
+            (messages, sent)
+        });
+        let e = run_program(
+            "tests/run_egm/silent_sensor.mod",
+            &[format!("--device=sensor=127.0.0.1:{port}")],
+            LIMIT,
+        );
+        let (messages, sent) = h.join().unwrap();
+        assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
+        assert!(messages > 10, "{messages}");
+        // Not steered: the run timed out where it started.
+        let q = printed(&e.stdout, "ERR_UDPUC_COMM at ");
+        assert!(near(&q, &[0.0, 0.0, 0.0, 0.0, 30.0, 0.0], 1e-6), "{q:?}");
+        assert!(
+            e.stderr.contains("event: EGM egm1: 90101 "),
+            "no 90101:\n{}",
+            e.stderr
+        );
+        assert!(e.stderr.contains("41822"), "{}", e.stderr);
+        // All counted: whatever reached the socket before the run ended (a few may still
+        // be in flight then), and nothing for another cause.
+        let totals = dropped_totals(&e.stderr);
+        let dropped = dropped_count(totals);
+        assert!(
+            dropped <= sent && dropped >= sent / 2,
+            "{dropped} of {sent}: {totals}"
+        );
+        assert_eq!(
+            totals,
+            format!(
+                "{dropped} datagrams dropped: {dropped} from another sender than the device's address and port"
+            )
+        );
+    }
+
+    /// Lockstep with a sensor that never answers: each cycle waits `--lockstep-timeout` for a
+    /// reply until the comm time-out is declared (0.3 s of robot time, 75 cycles), and none
+    /// after it: the ramp-out (0.5 s, 125 cycles) used to wait on every cycle too. Counted in
+    /// waits, not wall seconds.
+    #[test]
+    fn lockstep_stops_waiting_once_the_comm_timeout_is_declared() {
+        let dead = UdpSocket::bind("127.0.0.1:0").unwrap();
+        let port = dead.local_addr().unwrap().port();
+        let e = run_program(
+            "tests/run_egm/silent_sensor.mod",
+            &[
+                format!("--device=sensor=127.0.0.1:{port}"),
+                "--lockstep".into(),
+                "--lockstep-timeout=20".into(),
+            ],
+            LIMIT,
+        );
+        drop(dead);
+        assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
+        assert!(e.stdout.contains("ERR_UDPUC_COMM at "), "{}", e.stdout);
+        let line = e
+            .stderr
+            .lines()
+            .find(|l| l.starts_with("lockstep: "))
+            .unwrap_or_else(|| panic!("no lockstep line in\n{}", e.stderr));
+        let n: Vec<u64> = line
+            .split_whitespace()
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        let (waits, timeouts) = (n[0], n[1]);
+        assert_eq!(waits, timeouts, "{line}");
+        // One wait per EGM message until 0.3 s without a reply: 75 (give or take one).
+        assert!((74..=77).contains(&waits), "{line}");
+        // The run went on for the 0.5 s ramp-out without waiting.
+        let cycles = summary_cycles(&e);
+        assert!(cycles >= waits + 125, "{cycles} cycles, {line}");
     }
 }

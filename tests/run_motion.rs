@@ -3,8 +3,13 @@
 //! without its wall-clock part), issue 4's acceptance checked from the trace, straight lines,
 //! deterministic traces, plots, the manual's program, real time and bad options.
 
+#[path = "support/csv.rs"]
+mod csv;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+use csv::Csv;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -53,18 +58,8 @@ fn scratch(name: &str) -> PathBuf {
 
 /// The rows of a trace as (header, rows of fields).
 fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).expect("trace");
-    let mut lines = text.lines();
-    let header = lines
-        .next()
-        .expect("header")
-        .split(',')
-        .map(String::from)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(String::from).collect())
-        .collect();
-    (header, rows)
+    let c = Csv::read(path);
+    (c.header, c.rows)
 }
 
 /// Run `program` of `tests/run/motion` with `--trace` in the scratch directory `name`; it must

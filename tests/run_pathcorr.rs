@@ -5,12 +5,15 @@
 //! time-out and killed when its guard is dropped.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+#[path = "support/csv.rs"]
+mod csv;
 #[path = "support/procs.rs"]
 mod procs;
 
 use std::path::PathBuf;
 use std::time::Duration;
 
+use csv::Csv;
 use procs::{Ended, run_program};
 
 const STRAIGHT: &str = "tests/run/pathcorr/straight.mod";
@@ -26,32 +29,19 @@ const CORRECTED_END: [f64; 3] = [1400.0, 23.0, 498.0];
 const MAX_STEP_MM: f64 = 0.08;
 
 /// A trace file, read by column name.
-struct Trace {
-    header: Vec<String>,
-    rows: Vec<Vec<String>>,
+struct Trace(Csv);
+
+impl std::ops::Deref for Trace {
+    type Target = Csv;
+
+    fn deref(&self) -> &Csv {
+        &self.0
+    }
 }
 
 impl Trace {
-    fn read(path: &PathBuf) -> Trace {
-        let text = std::fs::read_to_string(path).unwrap();
-        let mut lines = text.lines();
-        let header = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_string)
-            .collect();
-        let rows = lines
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect();
-        Trace { header, rows }
-    }
-
-    fn col(&self, name: &str) -> usize {
-        self.header
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.header))
+    fn read(path: &std::path::Path) -> Trace {
+        Trace(Csv::read(path))
     }
 
     fn num(&self, row: usize, name: &str) -> Option<f64> {

@@ -25,8 +25,9 @@
 //!   this also ends the EGMRun… the TRAP interrupted.
 //! * A run started with `\NoWaitCond` that ends with an error reports it (always fatal) at
 //!   EGMWaitCond, at the next EGM instruction, or at the end of the program.
-//! * Program end or stop: a run still active ramps out over the profile's Default Ramp Time
-//!   ([`EgmController::program_stopped`]); streams end.
+//! * Program end or stop: a run still active brakes to rest (`egm::servo`: from its speed,
+//!   within MaxSpeedDeviation and the axis accelerations, short of the reference;
+//!   [`EgmController::program_stopped`]); streams end.
 //! * Lockstep (virtual time only): after each message to an external sensor the cycle waits
 //!   (real time, up to the per-message time-out) for the sensor's reply.
 
@@ -41,6 +42,7 @@ use crate::egm::registry::{
     RunPlan, SetupLtapp, SetupSignals, SetupUc, StopTarget, StreamPlan,
 };
 use crate::egm::servo::StopMode;
+use crate::egm::session::DropCounts;
 use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
@@ -65,6 +67,10 @@ use logger::Logger;
 
 /// Capacity of the event channel from the cycle hook.
 const EVENT_CAPACITY: usize = 1024;
+/// Longest wait for a run to halt at the program's end (robot time; real seconds in real
+/// time). A halt lasts at most the profile's Default Ramp Time (≤ 10 s) or the braking time
+/// at the axis accelerations (well under a second); this only guards against a broken run.
+const HALT_WAIT: Duration = Duration::from_secs(60);
 
 /// What the program's last movement was (the controller glue cannot see the zones).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -184,6 +190,9 @@ pub struct EgmSummary {
     pub rows_dropped: u64,
     /// Events lost (nobody took them in time).
     pub events_dropped: u64,
+    /// Datagrams the sessions of every run, stream and path correction did not use, by
+    /// cause.
+    pub datagrams: DropCounts,
 }
 
 /// The program side of EGM (see the module docs).
@@ -234,6 +243,7 @@ impl EgmController {
             robot,
             signals,
             options: setup.driver,
+            drops: Arc::default(),
         };
         let (pathcorr, pathcorr_hook) =
             path_correction_for(&ctx, setup.lockstep, setup.feed.clone(), log_tx.clone());
@@ -295,7 +305,7 @@ impl EgmController {
         Ok(())
     }
 
-    /// `EGMReset` (harmless when `name` is not reserved). A run of the identity ramps out
+    /// `EGMReset` (harmless when `name` is not reserved). A run of the identity brakes
     /// (the EGMRun… waiting for it returns); a stream ends.
     pub fn reset(&mut self, handle: &mut ControllerHandle, name: &str) -> Result<(), EgmFailure> {
         self.poll()?;
@@ -543,8 +553,8 @@ impl EgmController {
 
     // ----- program end -----
 
-    /// The program ended or stopped: a run still active ramps out (the profile's Default
-    /// Ramp Time) and this waits for it; streams end. Returns the error of a `\NoWaitCond`
+    /// The program ended or stopped: a run still active brakes to rest and this waits for
+    /// it; streams end. Returns the error of a `\NoWaitCond`
     /// run nobody waited for.
     pub fn program_stopped(&mut self, handle: &mut ControllerHandle) -> Result<(), EgmFailure> {
         self.shared.rapid_stopped.store(true, Ordering::Relaxed);
@@ -553,9 +563,12 @@ impl EgmController {
         if let Some(run) = &self.run {
             if run.result.is_none() {
                 run.control.halt();
-                let waited = handle.wait_until(Condition::Predicate(Box::new(|st| {
-                    st.mode == CoreMode::Planned
-                })));
+                // The halt is bounded by itself (at most the profile's ramp time, or the
+                // braking time at the axis accelerations): `--max-time` must not cut it short.
+                let waited = handle.wait_until_within(
+                    Condition::Predicate(Box::new(|st| st.mode == CoreMode::Planned)),
+                    HALT_WAIT,
+                );
                 if let Err(e) = waited {
                     result = Err(EgmFailure::from(e));
                 }
@@ -587,6 +600,7 @@ impl EgmController {
             rows_dropped: self.shared.rows_dropped.load(Ordering::Relaxed),
             events_dropped: self.shared.events_dropped.load(Ordering::Relaxed),
             rows_written: 0,
+            datagrams: self.ctx.drops.snapshot(),
         };
         if let Some(l) = self.logger {
             summary.rows_written = l.finish()?;

@@ -313,8 +313,18 @@ impl ControllerHandle {
     /// (or had stopped before), [`ControllerError::NeverSatisfied`] when the robot is idle and
     /// only motion could satisfy the condition, [`ControllerError::Timeout`] after the
     /// configured maximum wait in robot time.
-    pub fn wait_until(&mut self, mut cond: Condition) -> Result<MotionState, ControllerError> {
-        let max_wait = self.max_wait;
+    pub fn wait_until(&mut self, cond: Condition) -> Result<MotionState, ControllerError> {
+        self.wait_until_within(cond, self.max_wait)
+    }
+
+    /// As [`ControllerHandle::wait_until`] with its own maximum wait instead of the
+    /// configured one: for waits whose length the controller itself bounds, such as a stop
+    /// that must not be cut short by `--max-time`.
+    pub fn wait_until_within(
+        &mut self,
+        mut cond: Condition,
+        max_wait: Duration,
+    ) -> Result<MotionState, ControllerError> {
         match &mut self.driver {
             Driver::Virtual(v) => {
                 let limit = v.now().saturating_add(max_wait);
@@ -374,12 +384,24 @@ impl ControllerHandle {
         }
     }
 
-    /// Stop the robot now: drop queued and active moves and hold.
+    /// Stop the robot: drop queued and active moves and let it brake to rest (the
+    /// executor's stops: a few cycles, as quickly as the axis accelerations allow).
     pub fn stop_motion(&mut self) {
         match &mut self.driver {
-            Driver::Virtual(v) => v.core.stop(),
+            Driver::Virtual(v) => {
+                v.core.stop();
+                // A brake from top speed lasts well under a second; the bound only guards
+                // against a bug turning this into a hang.
+                for _ in 0..100_000 {
+                    if !v.core.state().moving {
+                        break;
+                    }
+                    v.tick(&mut self.events);
+                }
+                v.core.plan_from_here();
+            }
             Driver::RealTime(r) => {
-                let _ = r.control.send(Control::Clear);
+                let _ = r.control.send(Control::Stop);
                 let _ = Self::settle(r, |p| !p.state.moving && p.state.pending == 0);
                 let joints = r.published().state.setpoint.joints;
                 r.planner.set_start(joints);

@@ -354,7 +354,12 @@ impl Host for ControllerHost {
                 }
                 Ok(self.now())
             }
-            Err(e @ ControllerError::Stopped(_)) => Err(self.take_halt(Some(e))),
+            // The robot stopped on a motion error; its event may have been taken already
+            // (the robot brakes over several cycles after the error is logged).
+            Err(
+                e @ (ControllerError::Stopped(_)
+                | ControllerError::Rejected(crate::motion::MotionError::Halted)),
+            ) => Err(self.take_halt(Some(e))),
             Err(e) => Err(HostError::fatal(e.to_string())),
         }
     }

@@ -24,8 +24,8 @@ use super::stats::PeriodStats;
 /// Requests from the controller handle to the motion thread (rare: sizes do not matter).
 #[allow(clippy::large_enum_variant)]
 pub(super) enum Control {
-    /// Drop queued and active moves, hold.
-    Clear,
+    /// Drop queued and active moves and brake to rest.
+    Stop,
     /// Leave the halted state.
     Recover,
     /// Hand the robot to external guidance.
@@ -173,7 +173,7 @@ impl RtLoop {
         }
         loop {
             match self.control.try_recv() {
-                Ok(Control::Clear) => self.exec.clear(),
+                Ok(Control::Stop) => self.exec.stop(),
                 Ok(Control::Recover) => self.exec.recover(),
                 Ok(Control::StartExternal {
                     guidance,

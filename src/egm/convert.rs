@@ -190,6 +190,77 @@ pub fn decode_reference(
     }
 }
 
+/// True when `bytes` is a protobuf message cut short: its top-level fields read well up to
+/// the end of the datagram, where the last one needs more bytes than are left (a varint,
+/// a fixed-size value or a length-delimited field that runs past the end). A message that
+/// breaks the wire format anywhere else is merely malformed.
+pub fn is_truncated(bytes: &[u8]) -> bool {
+    let mut rest = bytes;
+    while !rest.is_empty() {
+        // A key cut in the middle is noise, not a cut message: the keys of the EGM
+        // messages are one byte long.
+        let Varint::Value(key, n) = varint(rest) else {
+            return false;
+        };
+        rest = rest.get(n..).unwrap_or(&[]);
+        if key >> 3 == 0 {
+            return false;
+        }
+        let need = match key & 7 {
+            0 => match varint(rest) {
+                Varint::Value(_, n) => n,
+                Varint::CutShort => return true,
+                Varint::Invalid => return false,
+            },
+            1 => 8,
+            2 => match varint(rest) {
+                Varint::Value(len, n) => {
+                    rest = rest.get(n..).unwrap_or(&[]);
+                    match usize::try_from(len) {
+                        Ok(len) => len,
+                        Err(_) => return true,
+                    }
+                }
+                Varint::CutShort => return true,
+                Varint::Invalid => return false,
+            },
+            5 => 4,
+            // Groups (3, 4) and the unused wire types 6 and 7: not a cut, a broken message.
+            _ => return false,
+        };
+        match rest.get(need..) {
+            Some(r) => rest = r,
+            None => return true,
+        }
+    }
+    false
+}
+
+/// A varint at the start of a buffer.
+enum Varint {
+    /// The value and its length in bytes.
+    Value(u64, usize),
+    /// The buffer ends inside it.
+    CutShort,
+    /// Longer than ten bytes.
+    Invalid,
+}
+
+fn varint(bytes: &[u8]) -> Varint {
+    let mut value = 0u64;
+    for (i, b) in bytes.iter().enumerate().take(10) {
+        value |= u64::from(b & 0x7f) << (7 * i);
+        if b & 0x80 == 0 {
+            return Varint::Value(value, i + 1);
+        }
+    }
+    if bytes.len() < 10 {
+        Varint::CutShort
+    } else {
+        Varint::Invalid
+    }
+}
+
 fn sensor_header(header: Option<&EgmHeader>) -> SensorHeader {
     header
         .map(|h| SensorHeader {

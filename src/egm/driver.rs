@@ -26,8 +26,8 @@
 //!    the sensor pose into joints with [`PoseGuidance::joint_target`] (IK nearest to
 //!    `current`, supervised) and `speedRef.cartesians` into joint speeds through the
 //!    Jacobian. A reference that cannot be reached (50050), needs an axis beyond its limit
-//!    (50027) or lies close to a singularity (50026) ends the run with that error: the EGM
-//!    speed ramps to zero over the profile's ramp time, then `finished` is `Err`. A joint
+//!    (50027) or lies close to a singularity (50026) ends the run with that error: the robot
+//!    brakes as for a program stop (`egm::servo`), then `finished` is `Err`. A joint
 //!    reference beyond an axis limit is dropped with event 90105 ("input out of bounds") and
 //!    the previous one stays in force.
 //! 3. Servo step ([`EgmServo`]): the control law, MaxSpeedDeviation (event 90110 when it
@@ -43,9 +43,8 @@
 //!    `\CondTime` → the stop mode runs (HOLD settles, RAMP_DOWN returns to the start) →
 //!    `finished` = `Ok(EgmEnd::Converged)`. Convergence only counts once a reference
 //!    arrived.
-//! 6. Comm time-out: no valid sensor message within `\CommTimeout` → the EGM speed ramps out
-//!    over the profile's ramp time → `Err(EgmError::CommTimeout)` (event 41822,
-//!    `ERR_UDPUC_COMM`).
+//! 6. Comm time-out: no valid sensor message within `\CommTimeout` → the robot brakes as
+//!    for a program stop → `Err(EgmError::CommTimeout)` (event 41822, `ERR_UDPUC_COMM`).
 //!
 //! `finished` is reported on exactly one tick ([`EgmDriver::outcome`] keeps it). The events
 //! of [`EgmDriver::poll_event`] never repeat the error in `finished`.
@@ -59,7 +58,8 @@
 //! replying once per received message, which all four tested clients do (abb_libegm,
 //! abb_robot_client, ABBRobotEGM, abbegm); a sensor that sends on its own timer instead
 //! makes every message wait for the time-out. Clients that check `header.tm` against real
-//! time (abb_libegm's `isConnected`) see virtual milliseconds.
+//! time (abb_libegm's `isConnected`) see virtual milliseconds. Once the comm time-out has
+//! been declared (41822) nothing is awaited any more: the ramp-out runs without waits.
 //!
 //! Nothing here panics, and `tick` neither sleeps nor blocks (the UDP socket is
 //! non-blocking); it allocates only for event texts, and in pose mode inside the IK.
@@ -511,9 +511,9 @@ impl EgmDriver {
         }
     }
 
-    /// Program stop: the EGM speed ramps to zero over the profile's Default Ramp Time while
-    /// the robot keeps sending with RAPID_STOPPED and MCI_STOPPED; then `finished` is
-    /// `Ok(EgmEnd::Halted)`.
+    /// Program stop: the robot brakes from its speed (over the profile's Default Ramp Time
+    /// at most, sooner near the reference: `egm::servo`) while the driver keeps sending with
+    /// RAPID_STOPPED and MCI_STOPPED; then `finished` is `Ok(EgmEnd::Halted)`.
     pub fn halt(&mut self) {
         if self.outcome.is_none() {
             self.exec = RapidExecState::Stopped;
@@ -524,9 +524,19 @@ impl EgmDriver {
         }
     }
 
-    /// Lockstep: a message went to an external sensor and no valid reply came yet.
+    /// Lockstep: a message went to an external sensor and no valid reply came yet. Never
+    /// once the comm time-out was declared (41822): the sensor is taken for dead, and the
+    /// ramp-out after it runs at the pace of virtual time, not of a wait per cycle.
     pub fn awaiting_reply(&self) -> bool {
-        self.awaiting && self.outcome.is_none()
+        self.awaiting && self.outcome.is_none() && !self.comm_timed_out()
+    }
+
+    /// True once the session's comm time-out expired (event 41822).
+    fn comm_timed_out(&self) -> bool {
+        match &self.link {
+            Link::Session { session, .. } => session.comm_timed_out(),
+            Link::Signals { .. } => false,
+        }
     }
 
     /// Lockstep: blocks up to `timeout` (real time) for the reply to the last message and
@@ -655,7 +665,7 @@ impl EgmDriver {
         }
     }
 
-    /// Ends the run with `err` after ramping the EGM speed out (first error wins).
+    /// Ends the run with `err` after braking to rest (first error wins).
     fn fail(&mut self, err: EgmError) {
         if self.error.is_some()
             || !matches!(
@@ -706,25 +716,49 @@ fn forward_events(session: &mut EgmSession, events: &mut EventQueue) {
     }
 }
 
+/// The session of a run, stream or path-correction link: `mode` with `remote` (accepting
+/// senders per `filter`) at `sample_period`, with the context's options, the robot's
+/// reference bounds, and the controller's drop tally.
+pub(crate) fn open_session(
+    ctx: &DriverContext,
+    instruction: &'static str,
+    mode: EgmMode,
+    link: (std::net::SocketAddr, SourceFilter),
+    sample_period: Duration,
+    comm_timeout: Option<Duration>,
+) -> Result<EgmSession, EgmError> {
+    let opts = &ctx.options;
+    let (remote, filter) = link;
+    let mut config = EgmConfig::new(mode, remote);
+    config.source_filter = filter;
+    config.sample_period = sample_period;
+    config.comm_timeout = comm_timeout;
+    config.queue = opts.queue;
+    config.encode = opts.encode;
+    config.event_repeat = opts.event_repeat;
+    config.limits = robot_limits(&ctx.robot);
+    let mut session = EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+        instruction,
+        detail: e.to_string(),
+    })?;
+    session.share_drops(Arc::clone(&ctx.drops));
+    Ok(session)
+}
+
 fn new_session(
     plan: &RunPlan,
     ctx: &DriverContext,
     remote: std::net::SocketAddr,
     filter: SourceFilter,
 ) -> Result<EgmSession, EgmError> {
-    let opts = &ctx.options;
-    let mut config = EgmConfig::new(plan.mode, remote);
-    config.source_filter = filter;
-    config.sample_period = plan.sample_period;
-    config.comm_timeout = Some(plan.comm_timeout);
-    config.queue = opts.queue;
-    config.encode = opts.encode;
-    config.event_repeat = opts.event_repeat;
-    config.limits = robot_limits(&ctx.robot);
-    EgmSession::new(config).map_err(|e| EgmError::BadSetup {
-        instruction: plan.instruction,
-        detail: e.to_string(),
-    })
+    open_session(
+        ctx,
+        plan.instruction,
+        plan.mode,
+        (remote, filter),
+        plan.sample_period,
+        Some(plan.comm_timeout),
+    )
 }
 
 /// Reference bounds narrowed to the robot's axis ranges.

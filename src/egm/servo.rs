@@ -31,15 +31,23 @@
 //! (0–4 ms) comes on top, as on a real controller. Set [`ServoParams::servo_delay`] to model
 //! another robot.
 //!
-//! **Stops.** [`StopMode::Hold`] lets the EGM speed decay through the filter and stays at the
-//! end position; [`StopMode::RampDown`] returns to the start position along a cosine profile
-//! within `\RampOutTime`; [`EgmServo::halt`] (program stop) ramps the speed linearly to zero
-//! over the profile's Default Ramp Time and stays where that leaves the robot.
+//! **Stops** (`servo/stop.rs`). Every end decelerates from the speed of the last step —
+//! all axes together, linearly — within MaxSpeedDeviation and
+//! [`ServoParams::axis_accel`], and never carries an axis past the last reference (nor its
+//! MaxPosDeviation bound or axis range). [`StopMode::Hold`] brakes as quickly as the
+//! accelerations allow and stays there; [`StopMode::RampDown`] brakes the same way, then
+//! returns to the start position along a cosine over at least `\RampOutTime` (longer when
+//! MaxSpeedDeviation or the accelerations need it); [`EgmServo::halt`] (program stop,
+//! errors, comm time-out) brakes over the profile's Default Ramp Time (shorter when the
+//! reference is closer) and stays where that leaves the robot.
 
 use std::time::Duration;
 
 use super::event::{EgmEvent, EventKind};
 use super::types::{Joints, ROBOT_AXES};
+
+mod stop;
+use stop::{Brake, StopFrom, brake_steps, return_steps};
 
 /// Default Proportional Position Gain of the predefined "default" profile, 1/s.
 pub const DEFAULT_KP: f64 = 5.0;
@@ -59,8 +67,6 @@ pub const DEFAULT_COND_TIME: Duration = Duration::from_secs(1);
 pub const MIN_PERIOD: Duration = Duration::from_micros(100);
 /// Longest servo delay.
 pub const MAX_SERVO_DELAY: Duration = Duration::from_secs(1);
-/// Below this EGM speed (degrees/s) a HOLD stop counts as finished.
-const HOLD_SETTLED: f64 = 1.0e-6;
 
 /// An `egm_minmax` convergence window: converged when min ≤ ordered − actual ≤ max.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,6 +135,9 @@ pub struct ServoParams {
     /// The robot's axis ranges `(min, max)`, degrees: the commanded position never leaves
     /// them. `None`: no axis limits (only MaxPosDeviation).
     pub axis_limits: Option<[MinMax; ROBOT_AXES]>,
+    /// The robot's axis accelerations, degrees/s²: no stop decelerates an axis faster.
+    /// `None`: stops are bounded by the reference only.
+    pub axis_accel: Option<Joints>,
     /// How the run ends.
     pub stop_mode: StopMode,
 }
@@ -153,6 +162,7 @@ impl Default for ServoParams {
             selected: [true; ROBOT_AXES],
             convergence_axes: None,
             axis_limits: None,
+            axis_accel: None,
             stop_mode: StopMode::Hold,
         }
     }
@@ -181,11 +191,11 @@ pub enum ServoError {
 pub enum ServoPhase {
     /// Tracking the reference.
     Running,
-    /// HOLD stop: the EGM speed decays to zero.
+    /// HOLD stop: braking to rest.
     Holding,
-    /// RAMP_DOWN stop: returning to the start position.
+    /// RAMP_DOWN stop: braking, then returning to the start position.
     RampingDown,
-    /// Program stop: the EGM speed ramps to zero.
+    /// Program stop (or an error): the EGM speed ramps to zero.
     Halting,
     /// Finished; the robot stands still.
     Done,
@@ -277,8 +287,15 @@ pub struct EgmServo {
     converged_for: Duration,
     phase_start_step: u64,
     phase_from: Joints,
-    phase_velocity: Joints,
-    phase_duration: Duration,
+    phase_steps: u64,
+    /// The stop's brake while it runs (`stop.rs`).
+    brake: Option<Brake>,
+    /// RAMP_DOWN: the shortest time from the stop to the start position.
+    ramp_out: Duration,
+    /// Speed of the last step, degrees/s (what a stop starts from).
+    moved: Joints,
+    /// The position reference of the last running step.
+    reference: Option<Joints>,
     was_limited: bool,
     was_clamped: bool,
     was_at_limit: bool,
@@ -319,8 +336,11 @@ impl EgmServo {
             converged_for: Duration::ZERO,
             phase_start_step: 0,
             phase_from: start,
-            phase_velocity: [0.0; ROBOT_AXES],
-            phase_duration: Duration::ZERO,
+            phase_steps: 1,
+            brake: None,
+            ramp_out: Duration::ZERO,
+            moved: [0.0; ROBOT_AXES],
+            reference: None,
             was_limited: false,
             was_clamped: false,
             was_at_limit: false,
@@ -357,28 +377,77 @@ impl EgmServo {
         }
     }
 
-    /// Program stop: the EGM speed ramps to zero over `ramp_time` and the robot stays there.
+    /// Program stop: the EGM speed ramps to zero over `ramp_time` (shorter when the
+    /// reference is closer, longer when the accelerations need it) and the robot stays
+    /// there. A brake under way (HOLD, or RAMP_DOWN before its return) goes on: it is already
+    /// the shortest stop; a RAMP_DOWN return stops where it is, short of the start position.
     pub fn halt(&mut self, ramp_time: Duration) {
-        if matches!(self.phase, ServoPhase::Running | ServoPhase::Holding) {
-            self.cause = Some(EndCause::Halted);
-            self.enter(ServoPhase::Halting, ramp_time);
-            self.phase_velocity = self.filtered;
+        match self.phase {
+            ServoPhase::Running => {
+                self.cause = Some(EndCause::Halted);
+                self.begin_brake(ServoPhase::Halting, ramp_time, self.reference);
+            }
+            ServoPhase::Holding => {
+                self.cause = Some(EndCause::Halted);
+                self.phase = ServoPhase::Halting;
+            }
+            ServoPhase::RampingDown if self.brake.is_some() => {
+                self.cause = Some(EndCause::Halted);
+                self.phase = ServoPhase::Halting;
+            }
+            ServoPhase::RampingDown => {
+                self.cause = Some(EndCause::Halted);
+                self.begin_brake(ServoPhase::Halting, ramp_time, Some(self.start));
+            }
+            ServoPhase::Halting | ServoPhase::Done => {}
         }
     }
 
     fn begin_stop(&mut self, mode: StopMode, ramp_out: Duration, cause: EndCause) {
         self.cause = Some(cause);
+        self.ramp_out = ramp_out;
         match mode {
-            StopMode::Hold => self.enter(ServoPhase::Holding, Duration::ZERO),
-            StopMode::RampDown => self.enter(ServoPhase::RampingDown, ramp_out),
+            StopMode::Hold => {
+                self.begin_brake(ServoPhase::Holding, Duration::ZERO, self.reference);
+            }
+            StopMode::RampDown => {
+                self.begin_brake(ServoPhase::RampingDown, Duration::ZERO, self.reference);
+            }
         }
     }
 
-    fn enter(&mut self, phase: ServoPhase, duration: Duration) {
+    /// Enters `phase` with a brake from the last step's speed (nominally over `nominal`)
+    /// that stops short of `reference`.
+    fn begin_brake(&mut self, phase: ServoPhase, nominal: Duration, reference: Option<Joints>) {
+        let from = StopFrom {
+            at: &self.commanded,
+            speed: &self.moved,
+            start: &self.start,
+            reference: reference.as_ref(),
+        };
+        let steps = brake_steps(&self.params, self.ts, &from, nominal);
+        self.brake = Some(Brake::new(self.moved, steps));
+        self.enter(phase, steps);
+    }
+
+    fn enter(&mut self, phase: ServoPhase, steps: u64) {
         self.phase = phase;
         self.phase_start_step = self.steps;
         self.phase_from = self.commanded;
-        self.phase_duration = duration;
+        self.phase_steps = steps.max(1);
+    }
+
+    /// One step of the brake; `true` once the robot is at rest.
+    fn brake_step(&mut self, velocity: &mut Joints) -> (u8, bool) {
+        let Some(brake) = self.brake.as_mut() else {
+            return (0, true);
+        };
+        let (v, done) = brake.step();
+        *velocity = v;
+        if done {
+            self.brake = None;
+        }
+        (self.integrate(&v), done)
     }
 
     /// One step with the reference in force.
@@ -389,13 +458,13 @@ impl EgmServo {
         let mut limit_factor = 1.0;
         let mut clamped_axes = 0u8;
         let mut velocity = [0.0; ROBOT_AXES];
+        let before = self.commanded;
         match self.phase {
-            ServoPhase::Running | ServoPhase::Holding => {
+            ServoPhase::Running => {
                 let k = self.params.kp * self.params.pos_corr_gain;
-                let running = self.phase == ServoPhase::Running;
                 for i in 0..ROBOT_AXES {
                     let selected = self.params.selected.get(i).copied().unwrap_or(false);
-                    let raw = if running && selected {
+                    let raw = if selected {
                         let r = input.position.get(i).copied().unwrap_or(0.0);
                         let c = self.commanded.get(i).copied().unwrap_or(0.0);
                         let s = input.speed.get(i).copied().unwrap_or(0.0);
@@ -409,11 +478,10 @@ impl EgmServo {
                         *f += self.alpha * (raw - *f);
                     }
                 }
-                let ramp = if running {
-                    ramp_in(self.steps, self.ts, self.params.ramp_in_time)
-                } else {
-                    1.0
-                };
+                if input.position.iter().all(|r| r.is_finite()) {
+                    self.reference = Some(input.position);
+                }
+                let ramp = ramp_in(self.steps, self.ts, self.params.ramp_in_time);
                 for (v, f) in velocity.iter_mut().zip(&self.filtered) {
                     *v = ramp * f;
                 }
@@ -427,8 +495,26 @@ impl EgmServo {
                     }
                 }
                 clamped_axes = self.integrate(&velocity);
-                if self.phase == ServoPhase::Holding && peak < HOLD_SETTLED {
+            }
+            ServoPhase::Holding | ServoPhase::Halting => {
+                let (clamped, done) = self.brake_step(&mut velocity);
+                clamped_axes = clamped;
+                if done {
                     self.finish();
+                }
+            }
+            ServoPhase::RampingDown if self.brake.is_some() => {
+                let (clamped, done) = self.brake_step(&mut velocity);
+                clamped_axes = clamped;
+                if done {
+                    // Back to the start within what is left of \RampOutTime, or longer.
+                    let braked = self.params.period.saturating_mul(
+                        u32::try_from(self.steps - self.phase_start_step).unwrap_or(u32::MAX),
+                    );
+                    let left = self.ramp_out.saturating_sub(braked);
+                    let steps =
+                        return_steps(&self.params, self.ts, &self.commanded, &self.start, left);
+                    self.enter(ServoPhase::RampingDown, steps);
                 }
             }
             ServoPhase::RampingDown => {
@@ -437,7 +523,11 @@ impl EgmServo {
                 for i in 0..ROBOT_AXES {
                     let from = self.phase_from.get(i).copied().unwrap_or(0.0);
                     let to = self.start.get(i).copied().unwrap_or(0.0);
-                    let target = from + (to - from) * shape;
+                    let target = if s >= 1.0 {
+                        to
+                    } else {
+                        from + (to - from) * shape
+                    };
                     if let (Some(c), Some(v)) = (self.commanded.get_mut(i), velocity.get_mut(i)) {
                         *v = (target - *c) / self.ts;
                         *c = target;
@@ -449,18 +539,10 @@ impl EgmServo {
                     self.finish();
                 }
             }
-            ServoPhase::Halting => {
-                let s = self.phase_progress();
-                for (v, v0) in velocity.iter_mut().zip(&self.phase_velocity) {
-                    *v = v0 * (1.0 - s);
-                }
-                self.filtered = velocity;
-                clamped_axes = self.integrate(&velocity);
-                if s >= 1.0 {
-                    self.finish();
-                }
-            }
             ServoPhase::Done => {}
+        }
+        for ((m, c), b) in self.moved.iter_mut().zip(&self.commanded).zip(&before) {
+            *m = (c - b) / self.ts;
         }
         let feedback = self.push_delay();
         let convergence_met = self.convergence(input, &feedback);
@@ -509,18 +591,14 @@ impl EgmServo {
 
     fn finish(&mut self) {
         self.phase = ServoPhase::Done;
+        self.brake = None;
         self.filtered = [0.0; ROBOT_AXES];
     }
 
-    /// Progress 0..=1 through a timed phase (a zero duration completes in one step).
+    /// Progress 0..=1 through a timed phase.
     fn phase_progress(&self) -> f64 {
-        let elapsed = (self.steps - self.phase_start_step) as f64 * self.ts;
-        let total = self.phase_duration.as_secs_f64();
-        if total <= 0.0 {
-            1.0
-        } else {
-            (elapsed / total).min(1.0)
-        }
+        let elapsed = (self.steps - self.phase_start_step) as f64;
+        (elapsed / self.phase_steps as f64).min(1.0)
     }
 
     /// pos_cmd += v·Ts, clamped to start ± MaxPosDeviation; returns the clamped-axes mask.
@@ -726,6 +804,9 @@ fn validate(p: &ServoParams) -> Result<(), ServoError> {
     for w in &p.windows {
         check("egm_minmax.min", w.min, w.min <= w.max, "≤ max")?;
         check("egm_minmax.max", w.max, true, "finite numbers")?;
+    }
+    for a in p.axis_accel.iter().flatten() {
+        check("axis acceleration", *a, *a > 0.0, "(0, ∞) deg/s²")?;
     }
     for l in p.axis_limits.iter().flatten() {
         check("axis limit min", l.min, l.min <= l.max, "≤ max")?;

@@ -24,13 +24,14 @@
 
 use std::collections::VecDeque;
 use std::net::{IpAddr, SocketAddr};
+use std::sync::Arc;
 use std::time::Duration;
 
 use prost::Message;
 
 use super::convert::{
     DecodeError, EncodeOptions, ReferenceError, ReferenceLimits, decode_reference,
-    feedback_non_finite, fill_robot, header_tm,
+    feedback_non_finite, fill_robot, header_tm, is_truncated,
 };
 use super::event::{EgmEvent, EventKind};
 use super::proto::EgmRobot;
@@ -50,16 +51,19 @@ const EVENT_QUEUE: usize = 32;
 /// Largest one-per-cycle queue.
 pub const MAX_QUEUE_CAPACITY: usize = 64;
 
+mod drops;
+pub use drops::{DropCounts, DropReason, DropTally};
+
 /// Which senders are accepted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SourceFilter {
-    /// Only datagrams from the configured remote IP. The configured remote port is always
-    /// accepted, and takes the session over from any other sender. Another port is accepted
-    /// only until the first accepted reference (so NAT may change it): from then on the
-    /// session keeps that sender, and a second sender on another port is dropped. Default.
+    /// Only datagrams from the device's remote address **and** port (`--device
+    /// NAME=HOST:PORT`, SIO.cfg `RemoteAddress`/`RemotePortNumber`; an IPv4-mapped IPv6
+    /// address counts as the IPv4 one). Any other sender, on another host or on the
+    /// sensor's host at another port, is dropped (event 90101) and counted. Default.
     #[default]
-    RemoteIp,
-    /// Any sender (NAT, containers); references from all of them are used.
+    Remote,
+    /// Any sender (the in-process built-in sensor); references from all of them are used.
     Any,
 }
 
@@ -102,12 +106,12 @@ pub struct EgmConfig {
 
 impl EgmConfig {
     /// Defaults for `mode` talking to `remote`: 4 ms cycle, 1 s comm time-out, newest-message
-    /// policy, remote-IP filter, 1024-byte limit, sanity bounds, one event per kind per second.
+    /// policy, remote address-and-port filter, 1024-byte limit, sanity bounds, one event per kind per second.
     pub fn new(mode: EgmMode, remote: SocketAddr) -> Self {
         EgmConfig {
             mode,
             remote,
-            source_filter: SourceFilter::RemoteIp,
+            source_filter: SourceFilter::Remote,
             sample_period: DEFAULT_SAMPLE_PERIOD,
             comm_timeout: Some(DEFAULT_COMM_TIMEOUT),
             queue: QueuePolicy::Newest,
@@ -152,25 +156,6 @@ pub enum SessionState {
     Stopped,
 }
 
-/// Why a datagram was not used.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DropReason {
-    /// From another IP than the device's remote address, or a second sender.
-    WrongSource,
-    /// Longer than the limit.
-    Oversized,
-    /// Not a valid protobuf message of the mode's type.
-    Malformed,
-    /// A NaN or infinite value.
-    NotFinite,
-    /// The mode's target or a required value is missing.
-    Incomplete,
-    /// Outside the configured bounds.
-    OutOfRange,
-    /// `header.mtype` contradicts the mode.
-    WrongType,
-}
-
 /// What [`EgmSession::handle_datagram`] did with a datagram.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Outcome {
@@ -191,10 +176,12 @@ pub struct EgmStats {
     pub received: u64,
     /// Accepted references.
     pub accepted: u64,
-    /// Dropped: unexpected sender (another IP, or a second sender on another port).
+    /// Dropped: not from the device's remote address and port.
     pub wrong_source: u64,
     /// Dropped: too long.
     pub oversized: u64,
+    /// Dropped: a protobuf message cut short.
+    pub truncated: u64,
     /// Dropped: did not decode.
     pub malformed: u64,
     /// Rejected: NaN or infinity.
@@ -227,6 +214,7 @@ impl EgmStats {
     pub fn dropped(&self) -> u64 {
         self.wrong_source
             + self.oversized
+            + self.truncated
             + self.malformed
             + self.not_finite
             + self.incomplete
@@ -270,9 +258,9 @@ pub struct EgmSession {
     events: VecDeque<EgmEvent>,
     throttle: [Throttle; THROTTLED.len()],
     wrong_source_reported: bool,
-    sensor: Option<SocketAddr>,
     scratch: EgmRobot,
     stats: EgmStats,
+    tally: Option<Arc<DropTally>>,
 }
 
 impl EgmSession {
@@ -314,9 +302,9 @@ impl EgmSession {
             events: VecDeque::with_capacity(EVENT_QUEUE),
             throttle: [Throttle::default(); THROTTLED.len()],
             wrong_source_reported: false,
-            sensor: None,
             scratch: EgmRobot::default(),
             stats: EgmStats::default(),
+            tally: None,
         })
     }
 
@@ -349,7 +337,6 @@ impl EgmSession {
         self.current = None;
         self.throttle = [Throttle::default(); THROTTLED.len()];
         self.wrong_source_reported = false;
-        self.sensor = None;
     }
 
     /// Ends the session; nothing is sent until the next [`EgmSession::start`].
@@ -371,6 +358,33 @@ impl EgmSession {
     /// Counters and latency.
     pub fn stats(&self) -> &EgmStats {
         &self.stats
+    }
+
+    /// Also counts every datagram this session drops in `tally` (the run-wide totals).
+    pub fn share_drops(&mut self, tally: Arc<DropTally>) {
+        self.tally = Some(tally);
+    }
+
+    /// Counts a datagram dropped for `reason` (here and in the shared tally).
+    fn count_drop(&mut self, reason: DropReason) {
+        let st = &mut self.stats;
+        let counter = match reason {
+            DropReason::WrongSource => &mut st.wrong_source,
+            DropReason::Oversized => &mut st.oversized,
+            DropReason::Truncated => &mut st.truncated,
+            DropReason::Malformed => &mut st.malformed,
+            DropReason::NotFinite => &mut st.not_finite,
+            DropReason::Incomplete => &mut st.incomplete,
+            DropReason::OutOfRange => &mut st.out_of_range,
+            DropReason::WrongType => &mut st.wrong_type,
+            DropReason::Late => &mut st.ignored_idle,
+            DropReason::QueueOverflow => &mut st.queue_overflow,
+            DropReason::Superseded => &mut st.superseded,
+        };
+        *counter = counter.saturating_add(1);
+        if let Some(t) = &self.tally {
+            t.add(reason);
+        }
     }
 
     /// Clears the counters.
@@ -518,11 +532,11 @@ impl EgmSession {
     pub fn handle_datagram(&mut self, now: Duration, src: SocketAddr, bytes: &[u8]) -> Outcome {
         self.stats.received += 1;
         if !self.is_running() {
-            self.stats.ignored_idle += 1;
+            self.count_drop(DropReason::Late);
             return Outcome::Ignored;
         }
         if let Some(expected) = self.unexpected_sender(src) {
-            self.stats.wrong_source += 1;
+            self.count_drop(DropReason::WrongSource);
             if !self.wrong_source_reported {
                 self.wrong_source_reported = true;
                 let detail = format!(
@@ -533,7 +547,7 @@ impl EgmSession {
             return Outcome::Dropped(DropReason::WrongSource);
         }
         if bytes.len() > self.config.max_datagram_len {
-            self.stats.oversized += 1;
+            self.count_drop(DropReason::Oversized);
             let detail = format!(
                 "{} bytes from {src}; the limit is {}",
                 bytes.len(),
@@ -549,26 +563,26 @@ impl EgmSession {
         let mode = self.config.mode;
         match decode_reference(bytes, mode, &previous, &self.config.limits, now) {
             Ok(reference) => {
-                self.accept(now, src, reference);
+                self.accept(now, reference);
                 Outcome::Accepted
             }
             Err(DecodeError::Malformed { expected, source }) => {
-                self.stats.malformed += 1;
+                let (reason, what) = if is_truncated(bytes) {
+                    (DropReason::Truncated, "cut short")
+                } else {
+                    (DropReason::Malformed, "not")
+                };
+                self.count_drop(reason);
                 let detail = format!(
-                    "{} bytes from {src}: not an {expected}: {source}",
+                    "{} bytes from {src}: {what} an {expected}: {source}",
                     bytes.len()
                 );
                 self.report(EventKind::Malformed, now, detail);
-                Outcome::Dropped(DropReason::Malformed)
+                Outcome::Dropped(reason)
             }
             Err(DecodeError::Rejected(err)) => {
                 let (reason, kind) = classify(&err);
-                match reason {
-                    DropReason::NotFinite => self.stats.not_finite += 1,
-                    DropReason::OutOfRange => self.stats.out_of_range += 1,
-                    DropReason::WrongType => self.stats.wrong_type += 1,
-                    _ => self.stats.incomplete += 1,
-                }
+                self.count_drop(reason);
                 self.report(kind, now, format!("from {src}: {err}"));
                 Outcome::Dropped(reason)
             }
@@ -577,33 +591,19 @@ impl EgmSession {
 
     /// Why `src` may not send to this session, if it may not.
     fn unexpected_sender(&self, src: SocketAddr) -> Option<String> {
-        if self.config.source_filter == SourceFilter::Any {
-            return None;
-        }
-        if canonical(src.ip()) != canonical(self.config.remote.ip()) {
-            return Some(format!(
-                "the device's remote address is {}",
-                self.config.remote.ip()
-            ));
-        }
-        if src.port() == self.config.remote.port() {
-            return None;
-        }
-        match self.sensor {
-            Some(sensor) if sensor.port() != src.port() => Some(format!(
-                "this session's sensor is {sensor} (a second sender)"
+        let remote = self.config.remote;
+        let ours = canonical(src.ip()) == canonical(remote.ip()) && src.port() == remote.port();
+        match self.config.source_filter {
+            SourceFilter::Any => None,
+            SourceFilter::Remote if ours => None,
+            SourceFilter::Remote => Some(format!(
+                "only the device's remote address {remote} may send to this session"
             )),
-            _ => None,
         }
     }
 
-    fn accept(&mut self, now: Duration, src: SocketAddr, reference: SensorReference) {
+    fn accept(&mut self, now: Duration, reference: SensorReference) {
         self.stats.accepted += 1;
-        // The configured remote port always takes the session over (a sender on another
-        // port that answered first is dropped from then on).
-        if self.sensor.is_none() || src.port() == self.config.remote.port() {
-            self.sensor = Some(src);
-        }
         if let Some(sent) = self.last_transmit {
             self.stats.turnaround.record(now.saturating_sub(sent));
         }
@@ -612,7 +612,7 @@ impl EgmSession {
         match self.config.queue {
             QueuePolicy::Newest => {
                 if self.queue.pop_front().is_some() {
-                    self.stats.superseded += 1;
+                    self.count_drop(DropReason::Superseded);
                 }
                 self.queue.push_back(reference);
             }
@@ -620,7 +620,7 @@ impl EgmSession {
                 self.queue.push_back(reference);
                 if self.queue.len() > capacity {
                     self.queue.pop_front();
-                    self.stats.queue_overflow += 1;
+                    self.count_drop(DropReason::QueueOverflow);
                     let detail = format!(
                         "more than {capacity} messages waiting; the oldest was dropped (the sensor sends faster than the EGM cycle)"
                     );

@@ -136,9 +136,15 @@ impl MotionCore {
         self.planner.set_settings(s);
     }
 
-    /// Stop now: drop queued and active moves, hold the position.
+    /// Stop: drop queued and active moves and brake to rest (the executor's stops); tick
+    /// until [`MotionState::moving`] is false, then [`MotionCore::plan_from_here`].
     pub fn stop(&mut self) {
-        self.exec.clear();
+        self.exec.stop();
+        self.planner.set_start(self.exec.setpoint().joints);
+    }
+
+    /// Plan the next move from where the robot is (after a stop has come to rest).
+    pub fn plan_from_here(&mut self) {
         self.planner.set_start(self.exec.setpoint().joints);
     }
 

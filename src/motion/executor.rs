@@ -4,6 +4,13 @@
 //! [`Executor::tick`] is the real-time path: no allocation, no lock, no I/O, no panic. Queues
 //! and the event log are preallocated; finished segments are parked for recycling instead of
 //! being dropped.
+//!
+//! **Stops.** A motion error during a move (supervision, path correction) and
+//! [`Executor::stop`] (the program stopped) never freeze the robot in one cycle: it brakes
+//! from the joint speeds of the last cycle, all axes together and linearly, as quickly as the
+//! axis accelerations allow (`motion::brake`), within the axis ranges. After an error the
+//! executor is halted once the robot is at rest. The brake is a joint movement, so the TCP
+//! may leave the programmed path by the little it travels while braking.
 
 use std::collections::VecDeque;
 use std::time::Duration;
@@ -12,6 +19,7 @@ use nalgebra::Translation3;
 
 use crate::robot::{JointsDeg, Pose, Robot, ToolData};
 
+use super::brake::{Brake, fewest_steps};
 use super::clock::RobotTime;
 use super::correction::{PathCorrection, PathPoint, Track};
 use super::event::{EventLog, InstrRef, MotionError, MotionEvent, PathPlace, Severity};
@@ -29,6 +37,18 @@ struct Active {
     in_corner: bool,
     /// Next sample index in the current list.
     idx: usize,
+}
+
+/// A stop under way (module docs).
+#[derive(Debug)]
+struct Braking {
+    brake: Brake,
+    /// The active tool's TCP relative to the flange (for the TCP of the braking cycles).
+    tool: Pose,
+    /// The instruction that was moving the robot.
+    instr: Option<InstrRef>,
+    /// Halt once at rest: a motion error stopped the robot.
+    halt: bool,
 }
 
 /// External guidance and what it needs each cycle.
@@ -65,6 +85,9 @@ pub struct Executor {
     halted: bool,
     correction: Option<Box<dyn PathCorrection>>,
     track: Option<Track>,
+    /// Joint speeds of the last cycle, deg/s.
+    velocity: JointsDeg,
+    braking: Option<Braking>,
 }
 
 impl std::fmt::Debug for Executor {
@@ -107,6 +130,8 @@ impl Executor {
             halted: false,
             correction: None,
             track: None,
+            velocity: [0.0; 6],
+            braking: None,
             robot,
         }
     }
@@ -163,7 +188,7 @@ impl Executor {
         MotionState {
             setpoint: self.setpoint,
             pending: self.queue.len(),
-            moving: self.active.is_some(),
+            moving: self.active.is_some() || self.braking.is_some(),
             last_done: self.last_done,
             halted: self.halted,
             mode: if self.external.is_some() {
@@ -185,7 +210,25 @@ impl Executor {
         self.halted = false;
     }
 
-    /// Stop at once: drop every queued and active move (kept for recycling) and hold.
+    /// Stop: drop every queued and active move (kept for recycling) and brake to rest from
+    /// the current speed (module docs); [`MotionState::moving`] stays true until the robot
+    /// is at rest. External guidance is left to stop itself.
+    pub fn stop(&mut self) {
+        self.clear();
+        self.track = None;
+        if self.external.is_none() && !self.halted && self.braking.is_none() {
+            let instr = self.setpoint.instr;
+            self.begin_brake(instr, false);
+        }
+    }
+
+    /// True while the robot brakes to rest after a stop or a motion error.
+    pub fn is_braking(&self) -> bool {
+        self.braking.is_some()
+    }
+
+    /// Drop every queued and active move (kept for recycling) at once, without braking: for
+    /// a robot at rest.
     pub fn clear(&mut self) {
         if let Some(a) = self.active.take() {
             self.park(a.seg);
@@ -217,7 +260,7 @@ impl Executor {
         if self.external.is_some() {
             return Err(MotionError::ExternalGuidance);
         }
-        if self.active.is_some() || !self.queue.is_empty() {
+        if self.active.is_some() || !self.queue.is_empty() || self.braking.is_some() {
             return Err(MotionError::NotAtStopPoint);
         }
         self.external = Some(External {
@@ -273,6 +316,32 @@ impl Executor {
     /// One motion cycle at robot time `now`.
     pub fn tick(&mut self, now: RobotTime) -> Setpoint {
         let prev = self.setpoint;
+        let sp = if self.braking.is_some() {
+            self.brake_tick(now, &prev)
+        } else {
+            let sp = self.play(now, &prev);
+            // A motion error in this cycle began a brake: this cycle is its first step.
+            if self.braking.is_some() {
+                self.brake_tick(now, &prev)
+            } else {
+                sp
+            }
+        };
+        // A stop point reached is rest: its last sample ends the profile at zero speed.
+        for ((v, q), p) in self.velocity.iter_mut().zip(&sp.joints).zip(&prev.joints) {
+            *v = if sp.standstill {
+                0.0
+            } else {
+                (q - p) / self.dt
+            };
+        }
+        self.setpoint = sp;
+        sp
+    }
+
+    /// One cycle of planned moves or external guidance after `prev`.
+    fn play(&mut self, now: RobotTime, prev: &Setpoint) -> Setpoint {
+        let prev = *prev;
         // Whether this cycle's TCP may belong to another tool than the previous one's.
         let mut fresh = false;
         let (target, at_stop_point, instr, tool_tcp) = if self.halted {
@@ -307,15 +376,7 @@ impl Executor {
                 None => (None, true, None, None),
             }
         };
-        let mut sp = Setpoint {
-            time: now,
-            tick: prev.tick.wrapping_add(1),
-            joints: prev.joints,
-            tcp: prev.tcp,
-            speed: 0.0,
-            standstill: at_stop_point,
-            instr,
-        };
+        let mut sp = prev.held(now, at_stop_point, instr);
         if let (Some(q), Some(tcp)) = (target, tool_tcp) {
             match self.supervise(&prev.joints, &q) {
                 Ok(()) => {
@@ -330,7 +391,51 @@ impl Executor {
             sp.standstill = true;
             sp.speed = 0.0;
         }
-        self.setpoint = sp;
+        sp
+    }
+
+    /// Begins a brake from the last cycle's speed (module docs); `halt`: halt at rest. A
+    /// robot already at rest stops (and halts) at once.
+    fn begin_brake(&mut self, instr: Option<InstrRef>, halt: bool) {
+        let speed = self.velocity;
+        if speed.iter().all(|v| *v == 0.0 || !v.is_finite()) {
+            self.halted |= halt;
+            return;
+        }
+        let steps = fewest_steps(&speed, &self.robot.model().max_accel, self.dt);
+        let sp = &self.setpoint;
+        let tool = self.robot.fk(&sp.joints).inverse() * sp.tcp;
+        self.braking = Some(Braking {
+            brake: Brake::new(speed, steps),
+            tool,
+            instr,
+            halt,
+        });
+    }
+
+    /// One cycle of the brake after `prev`.
+    fn brake_tick(&mut self, now: RobotTime, prev: &Setpoint) -> Setpoint {
+        let mut sp = prev.held(now, true, None);
+        let Some(b) = self.braking.as_mut() else {
+            return sp;
+        };
+        let (v, done) = b.brake.step();
+        let limits = &self.robot.model().joint_limits;
+        for ((q, v), l) in sp.joints.iter_mut().zip(&v).zip(limits) {
+            // The planner never plans beyond an axis range; the brake never leaves one.
+            *q = (*q + v * self.dt).clamp(l.min, l.max);
+        }
+        let tcp = self.robot.fk(&sp.joints) * b.tool;
+        if tcp.translation.vector.iter().all(|c| c.is_finite()) {
+            sp.speed = (tcp.translation.vector - prev.tcp.translation.vector).norm() / self.dt;
+            sp.tcp = tcp;
+        }
+        sp.standstill = done;
+        sp.instr = if done { None } else { b.instr };
+        if done {
+            self.halted |= b.halt;
+            self.braking = None;
+        }
         sp
     }
 
@@ -468,15 +573,16 @@ impl Executor {
         })
     }
 
-    /// Stop everything after a supervision error.
+    /// Stop everything after a supervision error: the robot brakes to rest, then the
+    /// executor is halted.
     fn fault(&mut self, instr: Option<InstrRef>, error: MotionError) {
-        self.halted = true;
         self.track = None;
         self.clear();
         if let Some(e) = self.external.take() {
             self.retired = Some(e.guidance);
         }
         self.log(Severity::Error, instr, error);
+        self.begin_brake(instr, true);
     }
 
     fn active_instr(&self) -> Option<InstrRef> {

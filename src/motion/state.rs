@@ -24,6 +24,22 @@ pub struct Setpoint {
     pub instr: Option<InstrRef>,
 }
 
+impl Setpoint {
+    /// The setpoint of the next cycle, at `now`, if the robot stays where it is now (speed
+    /// zero).
+    pub fn held(&self, now: RobotTime, standstill: bool, instr: Option<InstrRef>) -> Setpoint {
+        Setpoint {
+            time: now,
+            tick: self.tick.wrapping_add(1),
+            joints: self.joints,
+            tcp: self.tcp,
+            speed: 0.0,
+            standstill,
+            instr,
+        }
+    }
+}
+
 /// Who moves the robot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CoreMode {

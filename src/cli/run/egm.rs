@@ -118,10 +118,13 @@ pub fn uses_egm(prog: &crate::ir::Program, sources: &crate::source::SourceMap) -
     })
 }
 
-/// After the controller finished: wait for the EGM log writer; report lockstep counts and
-/// the log (when `log_written`).
+/// After the controller finished: wait for the EGM log writer; report the datagrams the
+/// sessions dropped (by cause), the lockstep counts and the log (when `log_written`).
 pub fn finish(controller: EgmController, args: &EgmArgs, log_written: bool) -> Result<(), String> {
     let summary = controller.finish()?;
+    if summary.datagrams.dropped() > 0 {
+        eprintln!("EGM: {}", summary.datagrams);
+    }
     if args.lockstep && summary.lockstep_waits > 0 {
         eprintln!(
             "lockstep: {} replies awaited, {} timed out (--lockstep-timeout {} ms)",

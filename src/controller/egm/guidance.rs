@@ -45,7 +45,7 @@ impl RunControl {
         self.request.store(r, Ordering::Release);
     }
 
-    /// Program stop: ramp the EGM speed out.
+    /// Program stop: the run brakes to rest.
     pub(crate) fn halt(&self) {
         self.request.store(HALT, Ordering::Release);
     }

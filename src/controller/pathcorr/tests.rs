@@ -85,6 +85,7 @@ impl Rig {
             robot: robot.clone(),
             signals: Arc::new(SignalTable::with_builtins()),
             options: DriverOptions::default(),
+            drops: Default::default(),
         };
         let mut feed = Feed::new();
         let rx = feed.subscribe();

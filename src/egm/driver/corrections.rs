@@ -18,7 +18,7 @@ use crate::egm::guidance::{SignalSource, feedback_in_wobj};
 use crate::egm::log::{LogKind, LogRing, LogRow};
 use crate::egm::pathcorr::{SeamProfile, Tracker};
 use crate::egm::registry::{MovePlan, TrackerKind};
-use crate::egm::session::{EgmConfig, EgmSession, EgmStats, SourceFilter};
+use crate::egm::session::{EgmSession, EgmStats, SourceFilter};
 use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState,
     RobotFeedback, Target,
@@ -28,7 +28,7 @@ use crate::robot::{Robot, ToolData, WobjData};
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
-use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, robot_limits};
+use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, open_session};
 
 /// One correction from the sensor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,18 +136,14 @@ impl CorrectionLink {
         let instruction = "EGMMoveL";
         check_options(instruction, &ctx.options)?;
         let session = |remote, filter| {
-            let mut config = EgmConfig::new(EgmMode::PathCorr, remote);
-            config.source_filter = filter;
-            config.sample_period = plan.sample_period;
-            config.comm_timeout = Some(plan.comm_timeout);
-            config.queue = ctx.options.queue;
-            config.encode = ctx.options.encode;
-            config.event_repeat = ctx.options.event_repeat;
-            config.limits = robot_limits(&ctx.robot);
-            let mut s = EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+            let mut s = open_session(
+                ctx,
                 instruction,
-                detail: e.to_string(),
-            })?;
+                EgmMode::PathCorr,
+                (remote, filter),
+                plan.sample_period,
+                Some(plan.comm_timeout),
+            )?;
             s.start(now);
             Ok::<_, EgmError>(Box::new(s))
         };

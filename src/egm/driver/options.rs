@@ -7,7 +7,7 @@ use crate::egm::EgmError;
 use crate::egm::convert::EncodeOptions;
 use crate::egm::log::DEFAULT_LOG_CAPACITY;
 use crate::egm::servo::{DEFAULT_SERVO_DELAY, MAX_SERVO_DELAY, MIN_PERIOD};
-use crate::egm::session::{QueuePolicy, SourceFilter};
+use crate::egm::session::{DropTally, QueuePolicy, SourceFilter};
 use crate::io::SignalTable;
 use crate::robot::Robot;
 
@@ -25,7 +25,7 @@ pub struct DriverOptions {
     pub servo_delay: Duration,
     /// How received references are consumed (newest per cycle).
     pub queue: QueuePolicy,
-    /// Which senders a UdpUc session accepts (the device's remote IP).
+    /// Which senders a UdpUc session accepts (the device's remote address and port).
     pub source_filter: SourceFilter,
     /// Extra `EgmRobot` content.
     pub encode: EncodeOptions,
@@ -43,7 +43,7 @@ impl Default for DriverOptions {
             tick: Duration::from_millis(4),
             servo_delay: DEFAULT_SERVO_DELAY,
             queue: QueuePolicy::Newest,
-            source_filter: SourceFilter::RemoteIp,
+            source_filter: SourceFilter::Remote,
             encode: EncodeOptions::default(),
             event_repeat: Duration::from_secs(1),
             reply_timeout: DEFAULT_REPLY_TIMEOUT,
@@ -61,6 +61,8 @@ pub struct DriverContext {
     pub signals: Arc<SignalTable>,
     /// rapidvc options.
     pub options: DriverOptions,
+    /// Datagrams every session of the controller dropped, by cause (the end-of-run totals).
+    pub drops: Arc<DropTally>,
 }
 
 /// The tick must allow a servo step and the servo delay must be modelled (egm::servo).

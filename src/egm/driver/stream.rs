@@ -8,7 +8,7 @@ use crate::egm::guidance::feedback_in_wobj;
 use crate::egm::log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::StreamPlan;
 use crate::egm::sensor::SensorPattern;
-use crate::egm::session::{EgmConfig, EgmSession, SourceFilter};
+use crate::egm::session::{EgmSession, SourceFilter};
 use crate::egm::types::{
     ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState, RobotFeedback,
 };
@@ -16,7 +16,7 @@ use crate::robot::{Robot, ToolData, WobjData};
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
-use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, robot_limits};
+use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, open_session};
 
 /// The result of one stream tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,17 +81,14 @@ impl EgmStream {
                 });
             }
         };
-        let mut config = EgmConfig::new(plan.mode, remote);
-        config.source_filter = filter;
-        config.sample_period = plan.sample_period;
-        config.comm_timeout = None;
-        config.encode = ctx.options.encode;
-        config.event_repeat = ctx.options.event_repeat;
-        config.limits = robot_limits(&ctx.robot);
-        let mut session = EgmSession::new(config).map_err(|e| EgmError::BadSetup {
+        let mut session = open_session(
+            ctx,
             instruction,
-            detail: e.to_string(),
-        })?;
+            plan.mode,
+            (remote, filter),
+            plan.sample_period,
+            None,
+        )?;
         session.start(now);
         let delay = DelayLine::new(ctx.options.servo_delay, ctx.options.tick, *current);
         Ok(EgmStream {

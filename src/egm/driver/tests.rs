@@ -21,6 +21,7 @@ fn ctx(table: Arc<SignalTable>) -> DriverContext {
         robot: Robot::default(),
         signals: table,
         options: DriverOptions::default(),
+        drops: Default::default(),
     }
 }
 

@@ -254,6 +254,7 @@ impl RunPlan {
             },
             convergence_axes: pose.then_some(self.selection),
             axis_limits: Some(axis_limits),
+            axis_accel: Some(robot.model().max_accel),
             stop_mode: self.stop_mode,
         }
     }

@@ -519,3 +519,152 @@ fn zero_bandwidth_switches_the_filter_off() {
     // Unfiltered: v = k·e = 5 · 5 deg/s on J1 in the first step.
     assert!((o.velocity[0] - 25.0).abs() < 1e-9, "{:?}", o.velocity);
 }
+
+/// Steps until `servo`, commanded at `from`, is done under `input`, with the speed of each
+/// step (from the commanded positions, as a trace sees it) and where it ends.
+fn speeds_until_done(
+    servo: &mut EgmServo,
+    from: Joints,
+    input: &ServoInput,
+) -> (Vec<Joints>, Joints) {
+    let ts = servo.params().period.as_secs_f64();
+    let mut q = from;
+    let mut last = q;
+    let mut speeds = Vec::new();
+    for _ in 0..100_000 {
+        let o = servo.step(input);
+        let mut v = [0.0; 6];
+        for i in 0..6 {
+            v[i] = (o.commanded[i] - q[i]) / ts;
+        }
+        q = o.commanded;
+        last = q;
+        speeds.push(v);
+        if o.phase == ServoPhase::Done {
+            break;
+        }
+    }
+    (speeds, last)
+}
+
+/// Ramp-in half done, MaxSpeedDeviation active: a halt, a HOLD stop and a RAMP_DOWN stop
+/// all start from the speed the robot has, not from the unscaled filter output.
+#[test]
+fn every_stop_starts_from_the_applied_speed() {
+    let params = ServoParams {
+        max_speed_deviation: 10.0,
+        ramp_in_time: Duration::from_secs(2),
+        axis_accel: Some([700.0, 700.0, 700.0, 2400.0, 2400.0, 3333.0]),
+        ..ServoParams::default()
+    };
+    let mut reference = START;
+    reference[5] = 30.0;
+    let input = ServoInput::position(reference);
+    for stop in 0..3 {
+        let mut servo = EgmServo::new(params, START).unwrap();
+        let (mut q, mut v) = (START, 0.0);
+        for _ in 0..75 {
+            let o = servo.step(&input);
+            v = (o.commanded[5] - q[5]) / 0.004;
+            q = o.commanded;
+        }
+        assert!(v > 1.0 && v <= 10.0 + 1e-9, "{v}");
+        match stop {
+            0 => servo.halt(Duration::from_millis(500)),
+            1 => servo.stop(StopMode::Hold, Duration::ZERO),
+            _ => servo.stop(StopMode::RampDown, Duration::from_millis(300)),
+        }
+        let o = servo.step(&input);
+        let first = (o.commanded[5] - q[5]) / 0.004;
+        assert!(first <= v + 1e-9, "stop {stop}: {v} → {first}");
+        assert!(
+            (v - first) / 0.004 <= 3333.0 + 1e-6,
+            "stop {stop}: {v} → {first}"
+        );
+    }
+}
+
+/// The brake lasts the nominal time unless the axis accelerations need longer or the
+/// reference is nearer than that brake would carry the robot.
+#[test]
+fn brakes_are_bounded_by_acceleration_and_by_the_reference() {
+    let accel = [700.0; 6];
+    let params = ServoParams {
+        max_speed_deviation: 100.0,
+        ramp_in_time: Duration::ZERO,
+        axis_accel: Some(accel),
+        cond_time: Duration::from_secs(1000),
+        ..ServoParams::default()
+    };
+    let mut far = START;
+    far[0] = 90.0;
+    let input = ServoInput::position(far);
+    // At 100 °/s, a 4 ms halt would need 25000 °/s²: 700 °/s² stretches it to 143 ms.
+    let mut servo = EgmServo::new(params, START).unwrap();
+    let mut before = START;
+    let mut prev = 0.0;
+    for _ in 0..100 {
+        let q = servo.step(&input).commanded;
+        prev = (q[0] - before[0]) / 0.004;
+        before = q;
+    }
+    assert!((prev - 100.0f64).abs() < 1e-6, "{prev}");
+    servo.halt(Duration::from_millis(4));
+    let (speeds, _) = speeds_until_done(&mut servo, before, &input);
+    assert_eq!(speeds.len(), 36, "ceil(100 / (700 · 0.004))");
+    for v in &speeds {
+        assert!(prev - v[0] <= 700.0 * 0.004 + 1e-9 && v[0] <= prev + 1e-9);
+        prev = v[0];
+    }
+    // Near the reference, a 2 s halt would overshoot it: it stops short instead.
+    let mut servo = EgmServo::new(params, START).unwrap();
+    let mut q = START;
+    for _ in 0..120 {
+        q = servo.step(&input).commanded;
+    }
+    servo.halt(Duration::from_secs(2));
+    let (speeds, rest) = speeds_until_done(&mut servo, q, &input);
+    assert!(speeds.len() < 500, "{}", speeds.len());
+    assert!(
+        rest[0] > q[0] && rest[0] <= far[0],
+        "{} → {}",
+        q[0],
+        rest[0]
+    );
+}
+
+/// RAMP_DOWN returns within \RampOutTime when it can, and takes longer when
+/// MaxSpeedDeviation or the accelerations would be exceeded.
+#[test]
+fn ramp_down_return_respects_max_speed_deviation_and_acceleration() {
+    let params = ServoParams {
+        max_speed_deviation: 20.0,
+        ramp_in_time: Duration::ZERO,
+        axis_accel: Some([700.0; 6]),
+        cond_time: Duration::from_secs(1000),
+        ..ServoParams::default()
+    };
+    let mut target = START;
+    target[0] = 20.0;
+    let input = ServoInput::position(target);
+    let mut servo = EgmServo::new(params, START).unwrap();
+    let mut q = START;
+    for _ in 0..1000 {
+        q = servo.step(&input).commanded;
+    }
+    servo.stop(StopMode::RampDown, Duration::from_millis(100));
+    let (speeds, rest) = speeds_until_done(&mut servo, q, &input);
+    assert_eq!(rest, START);
+    // 20° at ≤ 20 °/s along a cosine: at least π/2 s, not 0.1 s.
+    assert!(
+        speeds.len() as f64 * 0.004 >= std::f64::consts::FRAC_PI_2,
+        "{}",
+        speeds.len()
+    );
+    let mut prev = speeds[0][0];
+    for v in &speeds {
+        assert!(v[0].abs() <= 20.0 + 1e-9, "{}", v[0]);
+        assert!((v[0] - prev).abs() <= 700.0 * 0.004 + 1e-9);
+        prev = v[0];
+    }
+}

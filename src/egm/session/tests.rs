@@ -108,7 +108,7 @@ fn newest_reference_wins_and_stays_in_force() {
     let mut s = session(EgmMode::Joint);
     s.start(Duration::ZERO);
     s.poll_transmit(Duration::ZERO, &fb()).unwrap();
-    let src = "127.0.0.1:40000".parse().unwrap();
+    let src = remote();
     assert_eq!(
         s.handle_datagram(MS, src, &joint_reply(1.0)),
         Outcome::Accepted
@@ -133,7 +133,7 @@ fn one_per_cycle_keeps_order_and_bounds_the_queue() {
     cfg.queue = QueuePolicy::OnePerCycle { capacity: 2 };
     let mut s = EgmSession::new(cfg).unwrap();
     s.start(Duration::ZERO);
-    let src = "127.0.0.1:40000".parse().unwrap();
+    let src = remote();
     for v in [1.0, 2.0, 3.0] {
         s.handle_datagram(MS, src, &joint_reply(v));
     }
@@ -147,8 +147,10 @@ fn one_per_cycle_keeps_order_and_bounds_the_queue() {
 }
 
 #[test]
-fn other_senders_are_dropped_counted_and_reported_once() {
+fn only_the_remote_address_and_port_may_steer_and_every_drop_is_counted() {
     let mut s = session(EgmMode::Joint);
+    let tally = Arc::new(DropTally::default());
+    s.share_drops(Arc::clone(&tally));
     s.start(Duration::ZERO);
     let intruder: SocketAddr = "127.0.0.2:6510".parse().unwrap();
     for _ in 0..5 {
@@ -157,51 +159,85 @@ fn other_senders_are_dropped_counted_and_reported_once() {
             Outcome::Dropped(DropReason::WrongSource)
         );
     }
-    // Same IP, another port than the remote port (NAT): accepted, and now the sensor.
-    let sensor: SocketAddr = "127.0.0.1:1234".parse().unwrap();
+    // The sensor's host at another port, before and after the sensor answered: dropped.
+    let same_host: SocketAddr = "127.0.0.1:1234".parse().unwrap();
     assert_eq!(
-        s.handle_datagram(MS, sensor, &joint_reply(1.0)),
-        Outcome::Accepted
-    );
-    // IPv4-mapped IPv6 form of the same sender: accepted.
-    let mapped: SocketAddr = "[::ffff:127.0.0.1]:1234".parse().unwrap();
-    assert_eq!(
-        s.handle_datagram(MS, mapped, &joint_reply(1.0)),
-        Outcome::Accepted
-    );
-    // A second sender on another port of the same IP: dropped.
-    let second: SocketAddr = "127.0.0.1:4321".parse().unwrap();
-    assert_eq!(
-        s.handle_datagram(MS, second, &joint_reply(7.0)),
+        s.handle_datagram(MS, same_host, &joint_reply(1.0)),
         Outcome::Dropped(DropReason::WrongSource)
     );
-    assert_eq!(j1(&s.poll_reference().unwrap()), 1.0);
-    assert_eq!(s.stats().wrong_source, 6);
-    // The configured remote port always takes over (an intruder on the sensor's host that
-    // answered first cannot lock the real sensor out); the NAT sender is dropped from then on.
+    assert!(
+        s.poll_reference().is_none(),
+        "nothing steers but the sensor"
+    );
     assert_eq!(
         s.handle_datagram(MS, remote(), &joint_reply(3.0)),
         Outcome::Accepted
     );
+    // IPv4-mapped IPv6 form of the remote address and port: the sensor itself.
+    let mapped: SocketAddr = "[::ffff:127.0.0.1]:6510".parse().unwrap();
     assert_eq!(
-        s.handle_datagram(MS, sensor, &joint_reply(8.0)),
+        s.handle_datagram(MS, mapped, &joint_reply(4.0)),
+        Outcome::Accepted
+    );
+    assert_eq!(
+        s.handle_datagram(MS, same_host, &joint_reply(8.0)),
         Outcome::Dropped(DropReason::WrongSource)
     );
-    assert_eq!(j1(&s.poll_reference().unwrap()), 3.0);
+    assert_eq!(j1(&s.poll_reference().unwrap()), 4.0);
     assert_eq!(s.stats().wrong_source, 7);
     let ev = events(&mut s);
     assert_eq!(ev.len(), 1, "{ev:?}");
     assert_eq!(ev[0].number, 90101);
     assert!(ev[0].detail.contains("127.0.0.2"), "{}", ev[0].detail);
-    // A new session reports it again.
+    assert!(ev[0].detail.contains("127.0.0.1:6510"), "{}", ev[0].detail);
+    // Every other cause is counted too, here and in the shared tally.
+    let mut truncated = joint_reply(5.0);
+    truncated.truncate(truncated.len() - 3);
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &truncated),
+        Outcome::Dropped(DropReason::Truncated)
+    );
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &[0xff; 3]),
+        Outcome::Dropped(DropReason::Malformed),
+        "random bytes are not a cut message"
+    );
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &[0x0a; 4000]),
+        Outcome::Dropped(DropReason::Oversized)
+    );
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &joint_reply(f64::NAN)),
+        Outcome::Dropped(DropReason::NotFinite)
+    );
+    assert_eq!(
+        s.handle_datagram(MS, remote(), &joint_reply(1.0e6)),
+        Outcome::Dropped(DropReason::OutOfRange)
+    );
+    let counts = tally.snapshot();
+    assert_eq!(counts.get(DropReason::WrongSource), 7);
+    for reason in [
+        DropReason::Truncated,
+        DropReason::Malformed,
+        DropReason::Oversized,
+        DropReason::NotFinite,
+        DropReason::OutOfRange,
+    ] {
+        assert_eq!(counts.get(reason), 1, "{reason:?}: {counts}");
+    }
+    assert_eq!(counts.dropped(), s.stats().dropped());
+    // Nothing arrives outside a session without being counted.
+    s.stop();
+    assert_eq!(
+        s.handle_datagram(MS * 5, remote(), &joint_reply(1.0)),
+        Outcome::Ignored
+    );
+    assert_eq!(tally.snapshot().get(DropReason::Late), 1);
+    // A new session reports a foreign sender again.
+    let _ = events(&mut s);
     s.start(MS * 10);
     s.handle_datagram(MS * 11, intruder, &joint_reply(9.0));
     assert_eq!(events(&mut s).len(), 1);
-    assert_eq!(
-        s.handle_datagram(MS * 12, second, &joint_reply(2.0)),
-        Outcome::Accepted,
-        "a new session takes a new sensor"
-    );
 
     let mut cfg = EgmConfig::new(EgmMode::Joint, remote());
     cfg.source_filter = SourceFilter::Any;
