@@ -336,3 +336,74 @@ impl SourceCode for Excerpt {
         )))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use miette::{Diagnostic, LabeledSpan};
+    use proptest::prelude::*;
+
+    use crate::diag::{RapidDiagnostic, render_one_plain};
+    use crate::source::{SourceId, SourceMap};
+
+    /// A diagnostic with arbitrary labels in file 0.
+    #[derive(Debug, thiserror::Error)]
+    #[error("message with \u{1b}[31m in it")]
+    struct Labels(Vec<(usize, usize)>);
+
+    impl Diagnostic for Labels {
+        fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
+            Some(Box::new(self.0.iter().map(|&(s, l)| {
+                LabeledSpan::new(Some("here \u{7}".into()), s, l)
+            })))
+        }
+    }
+
+    impl RapidDiagnostic for Labels {
+        fn source_id(&self) -> Option<SourceId> {
+            Some(SourceId(0))
+        }
+    }
+
+    fn render(text: &str, labels: Vec<(usize, usize)>) -> String {
+        let mut map = SourceMap::new();
+        map.add("t.mod", text);
+        render_one_plain(&Labels(labels), &map, 80)
+    }
+
+    #[test]
+    fn a_label_in_left_out_text_points_at_the_ellipsis() {
+        let line = format!(
+            "{}x{}y{}",
+            "a".repeat(300),
+            "b".repeat(300),
+            "c".repeat(300)
+        );
+        let out = render(&line, vec![(300, 1), (601, 1)]);
+        assert!(out.contains("[t.mod:1:301]"), "{out}");
+        assert_eq!(out.matches('…').count(), 3, "{out}");
+        assert!(!out.contains('\u{1b}') && !out.contains('\u{7}'), "{out}");
+    }
+
+    proptest! {
+        /// Any text (long lines, every line end, control characters) and any labels, in range
+        /// or not: the renderer never panics and never prints a line wider than a window.
+        #[test]
+        fn any_text_and_labels_render(
+            pieces in prop::collection::vec(prop_oneof![
+                Just("\n".to_string()), Just("\r".to_string()), Just("\r\n".to_string()),
+                Just("\u{1b}]0;x\u{7}".to_string()), Just("\u{9b}\u{202e}\t".to_string()),
+                Just("é€".to_string()), "[a-z ;]{0,20}",
+                (1usize..70_000).prop_map(|n| " ".repeat(n)),
+            ], 0..12),
+            labels in prop::collection::vec((0usize..200_000, 0usize..100_000), 0..4),
+        ) {
+            let text: String = pieces.concat();
+            let out = render(&text, labels);
+            for line in out.lines() {
+                prop_assert!(line.chars().count() < 1000, "{} wide", line.chars().count());
+            }
+            let clean = !out.contains('\u{1b}') && !out.contains('\u{9b}');
+            prop_assert!(clean, "a control character reached the output");
+        }
+    }
+}
