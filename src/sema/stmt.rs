@@ -142,6 +142,10 @@ impl<'a> Checker<'a> {
         }
         let ir = &mut self.routines[rid.0 as usize];
         ir.locals = locals;
+        if !self.keep_code {
+            // Only the errors are wanted (`sema::check_only`).
+            return;
+        }
         ir.body = body;
         ir.error = error;
         ir.undo = undo;
