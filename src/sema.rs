@@ -84,9 +84,9 @@ pub fn analyze(
 }
 
 /// Only the diagnostics of [`analyze_to_vec`], for `rapidvc check`: the lowered code is
-/// dropped as soon as it is checked (each routine body once lowered, the data initialisers
-/// once ordered), so the memory needed is the syntax tree's rather than the tree's plus the
-/// whole program's.
+/// dropped as soon as it is checked (each routine body and each data initialiser once
+/// lowered), so the memory needed is the syntax tree's rather than the tree's plus the whole
+/// program's.
 pub fn check_only(inputs: &[Input<'_>], natives: Arc<[NativeSig]>, env: &Env) -> Vec<SemaError> {
     Checker::run(inputs, natives, env, false).0.errors
 }
@@ -176,6 +176,8 @@ pub(crate) struct Checker<'a> {
     /// Globals referenced while lowering a global initialiser.
     deps: Vec<GlobalId>,
     init_deps: Vec<Vec<GlobalId>>,
+    /// Which globals have a (well-formed) initial value, by global.
+    has_init: Vec<bool>,
     const_state: HashMap<u32, consteval::ConstState>,
     pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
     /// Routines with a placeholder parameter (their body stops the program).
@@ -208,11 +210,6 @@ impl<'a> Checker<'a> {
         c.check_native_signatures();
         c.lower_global_inits();
         let init_order = c.init_order();
-        if !keep_code {
-            for g in &mut c.globals {
-                g.init = None;
-            }
-        }
         c.lower_routines();
         c.errors.sort_by_key(|e| (e.span.source, e.span.start));
         (c, init_order)
@@ -244,6 +241,7 @@ impl<'a> Checker<'a> {
             rcx: None,
             deps: Vec::new(),
             init_deps: Vec::new(),
+            has_init: Vec::new(),
             const_state: HashMap::new(),
             pending_records: Vec::new(),
             incomplete: Default::default(),
