@@ -194,8 +194,8 @@ impl SourceFile {
 fn line_starts(text: &str) -> Vec<u32> {
     let mut starts = vec![0u32];
     let b = text.as_bytes();
-    for (i, &c) in b.iter().enumerate() {
-        if c == b'\n' || (c == b'\r' && b.get(i + 1) != Some(&b'\n')) {
+    for i in memchr::memchr2_iter(b'\n', b'\r', b) {
+        if b[i] == b'\n' || b.get(i + 1) != Some(&b'\n') {
             starts.push(i as u32 + 1);
         }
     }
