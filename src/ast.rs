@@ -69,8 +69,9 @@ pub enum ModuleItem {
     Alias(AliasDecl),
     /// `VAR`/`PERS`/`CONST` data.
     Data(DataDecl),
-    /// `PROC`/`FUNC`/`TRAP`.
-    Routine(Routine),
+    /// `PROC`/`FUNC`/`TRAP` (boxed: a module holds far more data than routines, and every
+    /// item takes the size of the largest).
+    Routine(Box<Routine>),
     /// A placeholder (`<TDN>`, `<DDN>`, `<RDN>`) standing for a declaration.
     Placeholder(Spanned<Placeholder>),
 }
@@ -252,9 +253,9 @@ pub enum StmtKind {
     /// `target := value;` (target: name, element or component chain).
     Assign {
         /// Assigned place.
-        target: Expr,
+        target: Box<Expr>,
         /// New value.
-        value: Expr,
+        value: Box<Expr>,
     },
     /// `Name arg, …;` — procedure call (instructions included).
     Call {
@@ -266,14 +267,14 @@ pub enum StmtKind {
     /// `% expr % arg, …;` — late-bound procedure call.
     LateCall {
         /// Expression giving the procedure name.
-        name: Expr,
+        name: Box<Expr>,
         /// Arguments.
         args: Vec<Arg>,
     },
     /// `IF … THEN … ELSEIF … ELSE … ENDIF`.
     If {
         /// Condition.
-        cond: Expr,
+        cond: Box<Expr>,
         /// THEN part.
         then_body: Vec<Stmt>,
         /// ELSEIF parts in order.
@@ -284,34 +285,34 @@ pub enum StmtKind {
     /// Compact `IF cond stmt;`.
     CompactIf {
         /// Condition.
-        cond: Expr,
+        cond: Box<Expr>,
         /// The single simple statement.
         stmt: Box<Stmt>,
     },
     /// `WHILE cond DO … ENDWHILE`.
     While {
         /// Condition.
-        cond: Expr,
+        cond: Box<Expr>,
         /// Body.
         body: Vec<Stmt>,
     },
     /// `FOR var FROM a TO b [STEP s] DO … ENDFOR`.
     For {
         /// Loop variable (implicitly declared num).
-        var: Ident,
+        var: Box<Ident>,
         /// Start.
-        from: Expr,
+        from: Box<Expr>,
         /// End.
-        to: Expr,
+        to: Box<Expr>,
         /// Step.
-        step: Option<Expr>,
+        step: Option<Box<Expr>>,
         /// Body.
         body: Vec<Stmt>,
     },
     /// `TEST e CASE …: … DEFAULT: … ENDTEST`.
     Test {
         /// The tested value.
-        subject: Expr,
+        subject: Box<Expr>,
         /// CASE clauses in order.
         cases: Vec<TestCase>,
         /// DEFAULT clause.
@@ -322,9 +323,9 @@ pub enum StmtKind {
     /// `GOTO name;`
     Goto(Ident),
     /// `RETURN [expr];`
-    Return(Option<Expr>),
+    Return(Option<Box<Expr>>),
     /// `RAISE [expr];`
-    Raise(Option<Expr>),
+    Raise(Option<Box<Expr>>),
     /// `RETRY;`
     Retry,
     /// `TRYNEXT;`
@@ -334,7 +335,7 @@ pub enum StmtKind {
     /// `CONNECT target WITH trap;`
     Connect {
         /// The interrupt variable.
-        target: Expr,
+        target: Box<Expr>,
         /// The trap routine.
         trap: Ident,
     },
@@ -372,21 +373,21 @@ pub enum ArgKind {
         /// Parameter name.
         name: Ident,
         /// Value.
-        value: Expr,
+        value: Box<Expr>,
     },
     /// `\name` (switch, or the same-named object) or `\name := expr`.
     Optional {
         /// Parameter name.
         name: Ident,
         /// Value, if written.
-        value: Option<Expr>,
+        value: Option<Box<Expr>>,
     },
     /// `\name ? param` — passed only when the caller's optional `param` is present.
     Conditional {
         /// Parameter name of the callee.
         name: Ident,
         /// Caller's optional parameter.
-        param: Ident,
+        param: Box<Ident>,
     },
     /// `<ARG>` placeholder.
     Placeholder(Placeholder),
@@ -429,7 +430,7 @@ pub enum ExprKind {
     /// `F(args)` — function call.
     Call {
         /// Function name.
-        name: Ident,
+        name: Box<Ident>,
         /// Arguments.
         args: Vec<Arg>,
     },

@@ -10,6 +10,11 @@ use miette::{Diagnostic, GraphicalReportHandler, GraphicalTheme, Severity};
 
 use crate::source::{SourceId, SourceMap};
 
+mod excerpt;
+
+use excerpt::Excerpt;
+pub(crate) use excerpt::escape_controls;
+
 /// A diagnostic that knows which source file its labels point into.
 pub trait RapidDiagnostic: Diagnostic + Send + Sync + 'static {
     /// The file the labels refer to, if any.
@@ -148,9 +153,18 @@ pub fn render_with(
     sources: &SourceMap,
     out: &mut String,
 ) {
+    let labels: Vec<miette::LabeledSpan> = d.labels().map(|l| l.collect()).unwrap_or_default();
+    let (source, labels) = match d.source_id() {
+        Some(id) => {
+            let (ex, moved) = Excerpt::new(sources.get(id), &labels);
+            (Some(ex), moved)
+        }
+        None => (None, labels),
+    };
     let with = WithSource {
         inner: d,
-        source: d.source_id().map(|id| sources.named_source(id)),
+        source,
+        labels,
     };
     if handler.render_report(out, &with).is_err() {
         out.push_str(&d.to_string());
@@ -168,10 +182,13 @@ pub fn render_one_plain(d: &dyn RapidDiagnostic, sources: &SourceMap, width: usi
     out
 }
 
-/// A diagnostic with its source file attached (miette's "delayed source code").
+/// A diagnostic with its source attached (miette's "delayed source code"): the excerpt of its
+/// file around its labels, the labels moved onto the excerpt, and every text that may quote
+/// source with its control characters made visible (see `diag/excerpt.rs`).
 struct WithSource<'a> {
     inner: &'a dyn RapidDiagnostic,
-    source: Option<miette::NamedSource<std::sync::Arc<str>>>,
+    source: Option<Excerpt>,
+    labels: Vec<miette::LabeledSpan>,
 }
 
 impl fmt::Debug for WithSource<'_> {
@@ -182,7 +199,7 @@ impl fmt::Debug for WithSource<'_> {
 
 impl fmt::Display for WithSource<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self.inner, f)
+        f.write_str(&escape_controls(&self.inner.to_string()))
     }
 }
 
@@ -196,7 +213,8 @@ impl Diagnostic for WithSource<'_> {
         self.inner.severity()
     }
     fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        self.inner.help()
+        let help = self.inner.help()?.to_string();
+        Some(Box::new(escape_controls(&help).into_owned()))
     }
     fn url<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
         self.inner.url()
@@ -205,7 +223,10 @@ impl Diagnostic for WithSource<'_> {
         self.source.as_ref().map(|s| s as &dyn miette::SourceCode)
     }
     fn labels(&self) -> Option<Box<dyn Iterator<Item = miette::LabeledSpan> + '_>> {
-        self.inner.labels()
+        if self.labels.is_empty() {
+            return None;
+        }
+        Some(Box::new(self.labels.iter().cloned()))
     }
     fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn Diagnostic> + 'a>> {
         self.inner.related()
@@ -225,7 +246,9 @@ fn json_str(s: &str) -> String {
             '\n' => o.push_str("\\n"),
             '\r' => o.push_str("\\r"),
             '\t' => o.push_str("\\t"),
-            c if (c as u32) < 0x20 => o.push_str(&format!("\\u{:04x}", c as u32)),
+            // (DEL, C1 controls and the bidirectional overrides too: valid JSON either way,
+            // and none of them reaches a terminal that shows the output.)
+            c if excerpt::is_terminal_control(c) => o.push_str(&format!("\\u{:04x}", c as u32)),
             c => o.push(c),
         }
     }

@@ -84,6 +84,14 @@ pub fn analyze(
     program
 }
 
+/// Only the diagnostics of [`analyze_to_vec`], for `rapidvc check`: the lowered code is
+/// dropped as soon as it is checked (each routine body and each data initialiser once
+/// lowered), so the memory needed is the syntax tree's rather than the tree's plus the whole
+/// program's.
+pub fn check_only(inputs: &[Input<'_>], natives: Arc<[NativeSig]>, env: &Env) -> Vec<SemaError> {
+    Checker::run(inputs, natives, env, false).0.errors
+}
+
 /// Like [`analyze`], returning the diagnostics as [`SemaError`]s (sorted by position) for
 /// callers that inspect them.
 pub fn analyze_to_vec(
@@ -91,22 +99,7 @@ pub fn analyze_to_vec(
     natives: Arc<[NativeSig]>,
     env: &Env,
 ) -> (Option<Program>, Vec<SemaError>) {
-    let mut c = Checker::new(natives);
-    for inp in inputs {
-        for m in &inp.file.modules {
-            c.add_module(m, inp.stdlib);
-        }
-    }
-    c.collect_types();
-    c.predefined_data(env);
-    c.collect_globals();
-    c.check_module_data();
-    c.collect_routines();
-    c.check_native_signatures();
-    c.lower_global_inits();
-    let init_order = c.init_order();
-    c.lower_routines();
-    c.errors.sort_by_key(|e| (e.span.source, e.span.start));
+    let (mut c, init_order) = Checker::run(inputs, natives, env, true);
     let errors = std::mem::take(&mut c.errors);
     if errors.iter().any(|e| !e.is_warning()) {
         return (None, errors);
@@ -184,15 +177,48 @@ pub(crate) struct Checker<'a> {
     /// Globals referenced while lowering a global initialiser.
     deps: Vec<GlobalId>,
     init_deps: Vec<Vec<GlobalId>>,
+    /// Which globals have a (well-formed) initial value, by global.
+    has_init: Vec<bool>,
     const_state: HashMap<u32, consteval::ConstState>,
     pending_records: Vec<(crate::ir::TypeId, ModuleId, &'a ast::RecordDecl)>,
     /// Routines with a placeholder parameter (their body stops the program).
     incomplete: std::collections::HashSet<usize>,
     /// Values held by all module data ([`crate::ir::limits`]).
     module_values: u64,
+    /// Keep the lowered routine bodies and data initialisers (false: only the errors are
+    /// wanted, see [`check_only`]).
+    keep_code: bool,
 }
 
 impl<'a> Checker<'a> {
+    /// Every pass over `inputs`; the checker (errors sorted by position) and the order in
+    /// which module data is initialised.
+    fn run(
+        inputs: &[Input<'a>],
+        natives: Arc<[NativeSig]>,
+        env: &Env,
+        keep_code: bool,
+    ) -> (Self, Vec<GlobalId>) {
+        let mut c = Checker::new(natives);
+        c.keep_code = keep_code;
+        for inp in inputs {
+            for m in &inp.file.modules {
+                c.add_module(m, inp.stdlib);
+            }
+        }
+        c.collect_types();
+        c.predefined_data(env);
+        c.collect_globals();
+        c.check_module_data();
+        c.collect_routines();
+        c.check_native_signatures();
+        c.lower_global_inits();
+        let init_order = c.init_order();
+        c.lower_routines();
+        c.errors.sort_by_key(|e| (e.span.source, e.span.start));
+        (c, init_order)
+    }
+
     fn new(natives: Arc<[NativeSig]>) -> Self {
         let native_syms = natives
             .iter()
@@ -219,10 +245,12 @@ impl<'a> Checker<'a> {
             rcx: None,
             deps: Vec::new(),
             init_deps: Vec::new(),
+            has_init: Vec::new(),
             const_state: HashMap::new(),
             pending_records: Vec::new(),
             incomplete: Default::default(),
             module_values: 0,
+            keep_code: true,
         }
     }
 
@@ -245,5 +273,60 @@ impl<'a> Checker<'a> {
 
     fn ty_name(&self, ty: Ty) -> String {
         self.types.display(ty)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `check_only` drops the lowered code as it goes; its diagnostics are exactly those of
+    /// the full analysis, on every RAPID file of the repository's tests and programs.
+    #[test]
+    fn check_only_reports_what_the_full_analysis_reports() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut paths = Vec::new();
+        for dir in ["tests/run", "tests/rapid", "programs"] {
+            let mut stack = vec![root.join(dir)];
+            while let Some(d) = stack.pop() {
+                for e in std::fs::read_dir(&d).into_iter().flatten().flatten() {
+                    let p = e.path();
+                    if p.is_dir() {
+                        stack.push(p);
+                    } else if p.extension().is_some_and(|x| x == "mod") {
+                        paths.push(p);
+                    }
+                }
+            }
+        }
+        assert!(paths.len() > 20, "found only {} programs", paths.len());
+        let natives = crate::interp::Registry::standard().signatures();
+        let mut diags = crate::diag::Diagnostics::new();
+        let mut map = crate::source::SourceMap::new();
+        let stdlib: Vec<ast::File> = crate::interp::stdlib::SOURCES
+            .iter()
+            .map(|(name, text)| crate::parse::parse_file(map.add(*name, *text), text, &mut diags))
+            .collect();
+        for path in paths {
+            let text = std::fs::read_to_string(&path).unwrap_or_default();
+            let file = crate::parse::parse_file(map.add("p", text.as_str()), &text, &mut diags);
+            let mut inputs: Vec<Input<'_>> = stdlib
+                .iter()
+                .map(|file| Input { file, stdlib: true })
+                .collect();
+            inputs.push(Input {
+                file: &file,
+                stdlib: false,
+            });
+            let env = Env::default();
+            let full = analyze_to_vec(&inputs, natives.clone(), &env).1;
+            let only = check_only(&inputs, natives.clone(), &env);
+            assert_eq!(
+                format!("{full:?}"),
+                format!("{only:?}"),
+                "{}",
+                path.display()
+            );
+        }
     }
 }

@@ -137,10 +137,7 @@ pub struct SourceFile {
 impl SourceFile {
     /// 1-based (line, column) of a byte offset; the column counts chars.
     pub fn line_col(&self, offset: u32) -> (usize, usize) {
-        let line = match self.line_starts.binary_search(&offset) {
-            Ok(i) => i,
-            Err(i) => i.saturating_sub(1),
-        };
+        let line = self.line_index(offset as usize);
         let start = self.line_starts.get(line).copied().unwrap_or(0) as usize;
         let end = (offset as usize).min(self.text.len());
         let col = self
@@ -153,19 +150,56 @@ impl SourceFile {
 
     /// The text of 1-based line `line`, without its line end.
     pub fn line_text(&self, line: usize) -> &str {
-        let Some(&start) = self.line_starts.get(line.wrapping_sub(1)) else {
+        if line == 0 || line > self.line_count() {
             return "";
-        };
-        let end = self
-            .line_starts
-            .get(line)
-            .map(|&e| e as usize)
-            .unwrap_or(self.text.len());
-        self.text
-            .get(start as usize..end)
-            .unwrap_or("")
-            .trim_end_matches(['\n', '\r'])
+        }
+        let (start, end) = self.line_bounds(line - 1);
+        self.text.get(start..end).unwrap_or("")
     }
+
+    /// Number of lines (a file that ends with a line end has an empty last line).
+    pub fn line_count(&self) -> usize {
+        self.line_starts.len()
+    }
+
+    /// The 0-based line holding byte `offset` (the last line for offsets past the end). A
+    /// line end belongs to the line it ends.
+    pub fn line_index(&self, offset: usize) -> usize {
+        let offset = u32::try_from(offset).unwrap_or(u32::MAX);
+        match self.line_starts.binary_search(&offset) {
+            Ok(i) => i,
+            Err(i) => i.saturating_sub(1),
+        }
+    }
+
+    /// Byte range of 0-based line `index` without its line end (LF, CR LF or a lone CR).
+    pub fn line_bounds(&self, index: usize) -> (usize, usize) {
+        let start = self
+            .line_starts
+            .get(index)
+            .map_or(self.text.len(), |&s| s as usize);
+        let next = self
+            .line_starts
+            .get(index + 1)
+            .map_or(self.text.len(), |&e| e as usize);
+        let line = self.text.get(start..next).unwrap_or("");
+        let content = line.strip_suffix('\n').unwrap_or(line);
+        let content = content.strip_suffix('\r').unwrap_or(content);
+        (start, start + content.len())
+    }
+}
+
+/// Byte offsets at which the lines of `text` start. LF, CR LF and a lone CR (old Mac files)
+/// each end a line, the same way the parser and the diagnostics renderer see them.
+fn line_starts(text: &str) -> Vec<u32> {
+    let mut starts = vec![0u32];
+    let b = text.as_bytes();
+    for i in memchr::memchr2_iter(b'\n', b'\r', b) {
+        if b[i] == b'\n' || b.get(i + 1) != Some(&b'\n') {
+            starts.push(i as u32 + 1);
+        }
+    }
+    starts
 }
 
 /// Decode file bytes: UTF-8 when valid, otherwise Latin-1 (each byte one char), as RAPID
@@ -192,12 +226,7 @@ impl SourceMap {
     /// Add a file and return its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<Arc<str>>) -> SourceId {
         let text: Arc<str> = text.into();
-        let mut line_starts = vec![0u32];
-        for (i, b) in text.bytes().enumerate() {
-            if b == b'\n' {
-                line_starts.push(i as u32 + 1);
-            }
-        }
+        let line_starts = line_starts(&text);
         let id = SourceId(self.files.len() as u32);
         self.files.push(SourceFile {
             name: name.into(),
@@ -277,5 +306,18 @@ mod tests {
         assert_eq!(f.line_text(1), "ab");
         assert_eq!(f.line_text(3), "ef");
         assert_eq!(decode_bytes(b"x\xe9y"), "x\u{e9}y");
+    }
+
+    #[test]
+    fn lone_cr_crlf_and_lf_all_end_lines() {
+        let mut m = SourceMap::new();
+        let id = m.add("a.mod", "a\rb\r\nc\nd\r\re");
+        let f = m.get(id);
+        let lines: Vec<&str> = (1..=f.line_count()).map(|l| f.line_text(l)).collect();
+        assert_eq!(lines, ["a", "b", "c", "d", "", "e"]);
+        assert_eq!(f.line_col(2), (2, 1));
+        assert_eq!(f.line_col(5), (3, 1));
+        assert_eq!(f.line_index(3), 1);
+        assert_eq!(f.line_bounds(1), (2, 3));
     }
 }

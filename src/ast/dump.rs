@@ -273,7 +273,7 @@ fn local(l: bool) -> &'static str {
     if l { "LOCAL " } else { "" }
 }
 
-fn opt(e: &Option<Expr>) -> String {
+fn opt(e: &Option<Box<Expr>>) -> String {
     e.as_ref()
         .map(|e| format!(" {}", e.sexpr()))
         .unwrap_or_default()

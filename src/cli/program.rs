@@ -174,7 +174,7 @@ fn sema_errors(
         stdlib: false,
     }));
     let env = sema::Env::from_signals(signals);
-    sema::analyze_to_vec(&inputs, registry.signatures(), &env).1
+    sema::check_only(&inputs, registry.signatures(), &env)
 }
 
 /// Run the semantic pass over already parsed user files (plus the stdlib).

@@ -5,7 +5,7 @@ use std::io::{IsTerminal, Write};
 
 use miette::{GraphicalReportHandler, GraphicalTheme};
 
-use crate::diag::{Diagnostics, RapidDiagnostic, render_with};
+use crate::diag::{Diagnostics, RapidDiagnostic, escape_controls, render_with};
 use crate::interp::RuntimeError;
 use crate::source::SourceMap;
 
@@ -42,7 +42,7 @@ pub fn runtime_error(e: &RuntimeError, sources: &SourceMap) {
     render_with(&handler(), e as &dyn RapidDiagnostic, sources, &mut out);
     if !e.stack.is_empty() {
         out.push_str("  RAPID call stack (innermost first):\n");
-        out.push_str(&e.stack_text(sources));
+        out.push_str(&escape_controls(&e.stack_text(sources)));
     }
     let mut err = std::io::stderr().lock();
     let _ = write!(err, "{out}");

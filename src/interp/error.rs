@@ -35,6 +35,9 @@ pub struct StackEntry {
     pub span: Span,
 }
 
+/// Frames shown at each end of a deep call stack (see [`RuntimeError::stack_text`]).
+pub const STACK_ENDS: usize = 10;
+
 /// A run-time error as a controller reports it: number, name, text, source position and
 /// call stack (innermost first).
 #[derive(Clone, Debug, PartialEq)]
@@ -63,10 +66,20 @@ impl RuntimeError {
         matches!(self.kind, ErrorKind::Rapid(_))
     }
 
-    /// The call stack as text lines (`  in PROC foo at file.mod:12:5`), innermost first.
+    /// The call stack as text lines (`  in foo at file.mod:12:5`), innermost first. A deep
+    /// stack (a runaway recursion) shows its innermost and outermost [`STACK_ENDS`] frames
+    /// and one line counting the frames left out.
     pub fn stack_text(&self, sources: &SourceMap) -> String {
         let mut s = String::new();
-        for e in &self.stack {
+        let n = self.stack.len();
+        let cut = n > 2 * STACK_ENDS + 1;
+        for (i, e) in self.stack.iter().enumerate() {
+            if cut && (STACK_ENDS..n - STACK_ENDS).contains(&i) {
+                if i == STACK_ENDS {
+                    s.push_str(&format!("  … {} more frames …\n", n - 2 * STACK_ENDS));
+                }
+                continue;
+            }
             s.push_str(&format!(
                 "  in {} at {}\n",
                 e.routine,

@@ -183,11 +183,11 @@ fn word_end(b: &[u8], i: usize) -> usize {
         .map_or(b.len(), |n| i + n)
 }
 
-/// The position of the LF that ends the line holding `i` (or the end of the text).
+/// The position of the LF or CR that ends the line holding `i` (or the end of the text).
 fn line_end(b: &[u8], i: usize) -> usize {
     b[i..]
         .iter()
-        .position(|&c| c == b'\n')
+        .position(|&c| c == b'\n' || c == b'\r')
         .map_or(b.len(), |n| i + n)
 }
 

@@ -41,16 +41,17 @@ pub(crate) fn too_deep(text: &str, limit: usize) -> Option<(usize, usize)> {
     while i < b.len() {
         match class(i) {
             BANG => {
+                // (A comment ends at LF or CR, as in the grammar.)
                 i += b[i..]
                     .iter()
-                    .position(|&c| c == b'\n')
+                    .position(|&c| c == b'\n' || c == b'\r')
                     .unwrap_or(b.len() - i);
             }
             QUOTE => {
                 i += 1;
                 i += b[i..]
                     .iter()
-                    .position(|&c| c == b'"' || c == b'\n')
+                    .position(|&c| c == b'"' || c == b'\n' || c == b'\r')
                     .unwrap_or(b.len() - i);
                 i += 1;
             }

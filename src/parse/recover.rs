@@ -257,7 +257,11 @@ fn expected_at(
     // A missing `;` at the end of a line: point at the end of that line, not at the next one.
     let prev = prev_token_end(text, pos);
     let at_end = text.get(pos..).is_none_or(|rest| rest.trim().is_empty());
-    let (span, label) = if at_end || (semi && text.get(prev..pos).is_some_and(|s| s.contains('\n')))
+    let (span, label) = if at_end
+        || (semi
+            && text
+                .get(prev..pos)
+                .is_some_and(|s| s.contains(['\n', '\r'])))
     {
         (
             Span::new(file, prev, prev),
@@ -327,7 +331,7 @@ pub(crate) fn describe(text: &str, pos: usize) -> (String, (usize, usize)) {
     }
     if c == '"' {
         let n = rest[1..]
-            .find(['"', '\n'])
+            .find(['"', '\n', '\r'])
             .map_or(rest.len(), |i| i + 2)
             .min(rest.len());
         return ("a string".into(), (pos, pos + n));
@@ -424,7 +428,7 @@ fn shorten(s: &str) -> String {
 fn first_word_after_local(text: &str, pos: usize) -> &str {
     let line_start = text
         .get(..pos)
-        .and_then(|t| t.rfind('\n'))
+        .and_then(|t| t.rfind(['\n', '\r']))
         .map_or(0, |i| i + 1);
     let rest = text.get(line_start..).unwrap_or("");
     let mut start = line_start + rest.len() - rest.trim_start().len();
@@ -467,7 +471,7 @@ pub(crate) fn prev_token_end(text: &str, pos: usize) -> usize {
     loop {
         let trimmed = text[..p].trim_end();
         p = trimmed.len();
-        let line_start = text[..p].rfind('\n').map_or(0, |i| i + 1);
+        let line_start = text[..p].rfind(['\n', '\r']).map_or(0, |i| i + 1);
         match comment_start(&text[line_start..p]) {
             Some(c) => p = line_start + c,
             None => return p,

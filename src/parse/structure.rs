@@ -369,7 +369,8 @@ impl Checker<'_> {
     fn args(&mut self, args: &[Arg]) {
         for a in args {
             match &a.kind {
-                ArgKind::Positional(e) | ArgKind::Named { value: e, .. } => self.expr(e),
+                ArgKind::Positional(e) => self.expr(e),
+                ArgKind::Named { value: e, .. } => self.expr(e),
                 ArgKind::Optional { value: Some(e), .. } => self.expr(e),
                 ArgKind::Optional { value: None, .. } | ArgKind::Conditional { .. } => {}
                 ArgKind::Placeholder(p) => self.placeholder(*p, a.span),

@@ -13,7 +13,7 @@ impl Checker<'_> {
         let mut state = vec![0u8; n];
         let mut order = Vec::new();
         for start in 0..n {
-            if state[start] != 0 || self.globals[start].init.is_none() {
+            if state[start] != 0 || !self.has_init[start] {
                 continue;
             }
             // Iterative DFS: (node, next dependency index).
@@ -29,7 +29,7 @@ impl Checker<'_> {
                     *next += 1;
                     let d = dep.0 as usize;
                     match state[d] {
-                        0 if self.globals[d].init.is_some() => {
+                        0 if self.has_init[d] => {
                             state[d] = 1;
                             stack.push((d, 0));
                         }

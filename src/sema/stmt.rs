@@ -13,6 +13,7 @@ impl<'a> Checker<'a> {
     /// Lower the initial values of module data (in their module's scope).
     pub(super) fn lower_global_inits(&mut self) {
         self.init_deps = vec![Vec::new(); self.globals.len()];
+        self.has_init = vec![false; self.globals.len()];
         for gi in 0..self.globals.len() {
             let decls = self.global_decls[gi].clone();
             let Some(&(m, d)) = decls.iter().find(|(_, d)| d.init.is_some()) else {
@@ -30,7 +31,10 @@ impl<'a> Checker<'a> {
             let v = self
                 .rvalue(init, Some(ty), dims_opt)
                 .and_then(|(x, xt)| self.coerce(x, xt, ty, &ctx, init.span));
-            self.globals[gi].init = v;
+            self.has_init[gi] = v.is_some();
+            if self.keep_code {
+                self.globals[gi].init = v;
+            }
             self.init_deps[gi] = std::mem::take(&mut self.deps);
         }
     }
@@ -143,6 +147,10 @@ impl<'a> Checker<'a> {
         }
         let ir = &mut self.routines[rid.0 as usize];
         ir.locals = locals;
+        if !self.keep_code {
+            // Only the errors are wanted (`sema::check_only`).
+            return;
+        }
         ir.body = body;
         ir.error = error;
         ir.undo = undo;
@@ -622,9 +630,12 @@ impl<'a> Checker<'a> {
             });
         }
         for a in args {
-            if let ArgKind::Positional(e) | ArgKind::Named { value: e, .. } = &a.kind {
-                let _ = self.rvalue(e, None, None);
-            }
+            let value = match &a.kind {
+                ArgKind::Positional(e) => e,
+                ArgKind::Named { value, .. } => value.as_ref(),
+                _ => continue,
+            };
+            let _ = self.rvalue(value, None, None);
         }
         self.err(
             K::Unsupported {
@@ -642,8 +653,8 @@ impl<'a> Checker<'a> {
         for a in args {
             let (name, expr): (Option<String>, Option<&ast::Expr>) = match &a.kind {
                 ArgKind::Positional(e) => (None, Some(e)),
-                ArgKind::Named { name, value } => (Some(name.node.clone()), Some(value)),
-                ArgKind::Optional { name, value } => (Some(name.node.clone()), value.as_ref()),
+                ArgKind::Named { name, value } => (Some(name.node.clone()), Some(value.as_ref())),
+                ArgKind::Optional { name, value } => (Some(name.node.clone()), value.as_deref()),
                 ArgKind::Conditional { .. } | ArgKind::Placeholder(_) => {
                     self.err(
                         K::BadDecl {

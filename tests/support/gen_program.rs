@@ -2,7 +2,8 @@
 //! the throughput benchmark and the large-file tests. Deterministic: same size, same text.
 
 /// A valid RAPID file of at least `min_bytes` bytes (several modules are not needed: one
-/// module with many routines and declarations).
+/// module with many routines and declarations). It passes the semantic check too when the
+/// digital output `doGripper` is configured (see `benches/check_memory.rs`).
 pub fn program(min_bytes: usize) -> String {
     let mut s = String::with_capacity(min_bytes + 4096);
     s.push_str("%%%\r\n  VERSION:1\r\n  LANGUAGE:ENGLISH\r\n%%%\r\n");
@@ -13,6 +14,7 @@ pub fn program(min_bytes: usize) -> String {
     s.push_str("  LOCAL CONST num table{2,3} := [[1,2,3],[4,5,6]];\r\n");
     s.push_str("  TASK PERS tooldata tBench:=[TRUE,[[12.3313,-0.108707,416.142],[0.903899,-0.00320735,0.427666,0.00765917]],[2.6,[-111.1,24.6,386.6],[1,0,0,0],0,0,0.072]];\r\n");
     s.push_str("  VAR intnum irBench;\r\n  VAR benchrec rec;\r\n  VAR num cycle := 0;\r\n");
+    s.push_str("  VAR num counter := 0;\r\n  TRAP trapBench\r\n    RETURN;\r\n  ENDTRAP\r\n");
     s.push_str(
         "  CONST jointtarget jHome:=[[0,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];\r\n",
     );
@@ -101,7 +103,8 @@ fn block(s: &mut String, i: usize) {
     );
     s.push_str("    TEST j\r\n    CASE 1, 2, 3:\r\n      Stop;\r\n    CASE 4:\r\n      GOTO done;\r\n    DEFAULT:\r\n      j := -1;\r\n    ENDTEST\r\n");
     s.push_str("    done:\r\n");
-    s.push_str("    %\"work\" + NumToStr(n, 0)% n, \\Fast?Fast;\r\n");
+    s.push_str("    %\"work\" + NumToStr(n, 0)% n;\r\n");
+    s.push_str(&format!("    work{i} n, \\Fast?Fast, vals;\r\n"));
     s.push_str("    CONNECT irBench WITH trapBench;\r\n");
     s.push_str("  ERROR (ERR_DIVZERO, 41)\r\n    IF ERRNO = ERR_DIVZERO THEN\r\n      TRYNEXT;\r\n    ENDIF\r\n    RETRY;\r\n");
     s.push_str("  ENDPROC\r\n");

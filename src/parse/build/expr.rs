@@ -176,7 +176,10 @@ impl Builder<'_, '_> {
                         let (args, d) = self.args(args_pair.into_inner(), depth)?;
                         (
                             Expr {
-                                kind: ExprKind::Call { name, args },
+                                kind: ExprKind::Call {
+                                    name: Box::new(name),
+                                    args,
+                                },
                                 span: span.merge(end),
                             },
                             d + 1,
@@ -320,7 +323,14 @@ impl Builder<'_, '_> {
                         Some(v) if v.as_rule() == Rule::cond_arg => {
                             let param = self.ident(&v.into_inner().next()?);
                             let span = start.merge(param.span);
-                            (ArgKind::Conditional { name, param }, 1, span)
+                            (
+                                ArgKind::Conditional {
+                                    name,
+                                    param: Box::new(param),
+                                },
+                                1,
+                                span,
+                            )
                         }
                         Some(v) => {
                             let (value, d) = self.expr_at(v, depth + 1)?;
@@ -328,7 +338,7 @@ impl Builder<'_, '_> {
                             (
                                 ArgKind::Optional {
                                     name,
-                                    value: Some(value),
+                                    value: Some(Box::new(value)),
                                 },
                                 d,
                                 span,
@@ -341,7 +351,14 @@ impl Builder<'_, '_> {
                     let name = self.ident(&inner.next()?);
                     let (value, d) = self.expr_at(inner.next()?, depth + 1)?;
                     let span = start.merge(value.span);
-                    (ArgKind::Named { name, value }, d, span)
+                    (
+                        ArgKind::Named {
+                            name,
+                            value: Box::new(value),
+                        },
+                        d,
+                        span,
+                    )
                 }
                 _ => {
                     let (e, d) = self.expr_at(p, depth + 1)?;

@@ -255,7 +255,7 @@ fn skip_trivia(t: &str, pos: &mut usize) {
         match c {
             b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C => *pos += 1,
             b'!' => {
-                while *pos < b.len() && b[*pos] != b'\n' {
+                while *pos < b.len() && b[*pos] != b'\n' && b[*pos] != b'\r' {
                     *pos += 1;
                 }
             }

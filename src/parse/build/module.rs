@@ -70,7 +70,7 @@ impl<'t> Builder<'t, '_> {
             Rule::record_decl => self.record(item).map(ModuleItem::Record),
             Rule::alias_decl => self.alias(item).map(ModuleItem::Alias),
             Rule::data_decl => self.data_decl(item).map(ModuleItem::Data),
-            Rule::routine => self.routine(item).map(ModuleItem::Routine),
+            Rule::routine => self.routine(item).map(|r| ModuleItem::Routine(Box::new(r))),
             Rule::item_placeholder => item.into_inner().next().map(|ph| {
                 ModuleItem::Placeholder(Spanned::new(placeholder(self.text_of(&ph)), span))
             }),

@@ -69,6 +69,11 @@ impl<'t> Builder<'t, '_> {
             .into_iter()
             .map(Option::flatten)
             .collect::<Option<Vec<Piece>>>()?;
+        // (One allocation of the right size: growing by doubling would hold the old and the
+        // new list at once, three times the items of a large module.)
+        m.module
+            .items
+            .reserve(pieces.iter().map(|(items, _)| items.len()).sum());
         for (items, span) in pieces {
             m.module.items.extend(items);
             m.module.span = m.module.span.merge(span);

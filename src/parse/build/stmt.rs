@@ -58,7 +58,10 @@ impl Builder<'_, '_> {
                 let mut inner = tail.into_inner().peekable();
                 let target = self.target(name, &mut inner)?;
                 let value = self.expr(inner.next()?)?;
-                StmtKind::Assign { target, value }
+                StmtKind::Assign {
+                    target: Box::new(target),
+                    value: Box::new(value),
+                }
             }
             _ => StmtKind::Label(self.ident(&name)),
         })
@@ -72,12 +75,15 @@ impl Builder<'_, '_> {
                 let first = inner.next()?;
                 let target = self.target(first, &mut inner)?;
                 let value = self.expr(inner.next()?)?;
-                StmtKind::Assign { target, value }
+                StmtKind::Assign {
+                    target: Box::new(target),
+                    value: Box::new(value),
+                }
             }
             Rule::late_call => {
                 let name = self.expr(inner.next()?)?;
                 StmtKind::LateCall {
-                    name,
+                    name: Box::new(name),
                     args: self.call_args(inner)?,
                 }
             }
@@ -91,14 +97,14 @@ impl Builder<'_, '_> {
             Rule::return_stmt => {
                 inner.next();
                 StmtKind::Return(match inner.next() {
-                    Some(e) => Some(self.expr(e)?),
+                    Some(e) => Some(Box::new(self.expr(e)?)),
                     None => None,
                 })
             }
             Rule::raise_stmt => {
                 inner.next();
                 StmtKind::Raise(match inner.next() {
-                    Some(e) => Some(self.expr(e)?),
+                    Some(e) => Some(Box::new(self.expr(e)?)),
                     None => None,
                 })
             }
@@ -111,7 +117,10 @@ impl Builder<'_, '_> {
                 let target = self.target(first, &mut inner)?;
                 inner.next(); // WITH
                 let trap = self.ident(&inner.next()?);
-                StmtKind::Connect { target, trap }
+                StmtKind::Connect {
+                    target: Box::new(target),
+                    trap,
+                }
             }
             Rule::if_stmt => {
                 let opener = inner.next()?;
@@ -122,7 +131,10 @@ impl Builder<'_, '_> {
                 let cond = self.expr(inner.next()?)?;
                 inner.next(); // DO
                 let body = self.block(&opener, &mut inner, "ENDWHILE");
-                StmtKind::While { cond, body }
+                StmtKind::While {
+                    cond: Box::new(cond),
+                    body,
+                }
             }
             Rule::for_stmt => {
                 let opener = inner.next()?;
@@ -141,10 +153,10 @@ impl Builder<'_, '_> {
                 };
                 let body = self.block(&opener, &mut inner, "ENDFOR");
                 StmtKind::For {
-                    var,
-                    from,
-                    to,
-                    step,
+                    var: Box::new(var),
+                    from: Box::new(from),
+                    to: Box::new(to),
+                    step: step.map(Box::new),
                     body,
                 }
             }
@@ -182,7 +194,7 @@ impl Builder<'_, '_> {
             // Compact IF: one simple statement.
             let stmt = self.statement(next)?;
             return Some(StmtKind::CompactIf {
-                cond,
+                cond: Box::new(cond),
                 stmt: Box::new(stmt),
             });
         }
@@ -223,7 +235,7 @@ impl Builder<'_, '_> {
             }
         }
         Some(StmtKind::If {
-            cond,
+            cond: Box::new(cond),
             then_body,
             elseifs,
             else_body,
@@ -282,7 +294,7 @@ impl Builder<'_, '_> {
             }
         }
         Some(StmtKind::Test {
-            subject,
+            subject: Box::new(subject),
             cases,
             default,
         })

@@ -6,6 +6,8 @@ MODULE Draft
     x := <EXP>;
     <VAR> := 1;
     Tool <ARG>, 3;
+    IF a > 0 <SMT>
+    IF a < 0 <SMT>;
     IF a > 0 THEN
       <SMT>;
     <EIT>
