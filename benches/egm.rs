@@ -22,8 +22,8 @@ use rapidvc::egm::{
     DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,
     EgmSource, ExternalAxes, Joints, Pose, RapidData, RegistryConfig, RobotFeedback,
 };
-use rapidvc::io::SignalTable;
 use rapidvc::robot::Robot;
+use rapidvc::signals::SignalTable;
 
 fn feedback() -> RobotFeedback {
     let pose = Pose {
@@ -253,7 +253,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
         let setup = SetupSignals {
             mecunit: "ROB_1".into(),
             profile: "default".into(),
-            kind: rapidvc::io::SignalKind::Ao,
+            kind: rapidvc::signals::SignalKind::Ao,
             mode,
             tracker: None,
             mapping: [

@@ -22,9 +22,9 @@ use rapidvc::egm::{
     CorrState, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmMode,
     EgmRegistry, EgmSource, EgmState, EgmStream, EgmTick, Joints, RapidExecState, RegistryConfig,
 };
-use rapidvc::io::{SignalKind, SignalTable};
 use rapidvc::robot::units::pose_from_pos_quat;
 use rapidvc::robot::{ConfData, LoadData, Robot, ToolData};
+use rapidvc::signals::{SignalKind, SignalTable};
 
 const TICK: Duration = Duration::from_millis(4);
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];

@@ -14,11 +14,11 @@ use guidance::{
     SpeedRefLimit, tcp_jacobian,
 };
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
-use rapidvc::io::{SignalKind, SignalTable};
 use rapidvc::robot::units::{pose_from_pos_quat, pose_to_pos_quat};
 use rapidvc::robot::{
     ConfData, JointsDeg, KinError, LoadData, Pose, Robot, SingularityKind, ToolData, WobjData,
 };
+use rapidvc::signals::{SignalKind, SignalTable};
 
 /// Joint tolerance of docs/robot.md, "Acceptance facts".
 const JOINT_TOL: f64 = 0.01;

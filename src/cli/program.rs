@@ -9,11 +9,11 @@ use crate::ast;
 use crate::config;
 use crate::diag::Diagnostics;
 use crate::interp::{Registry, stdlib};
-use crate::io::SignalTable;
 use crate::ir::Program;
 use crate::load;
 use crate::parse;
 use crate::sema;
+use crate::signals::SignalTable;
 use crate::source::SourceMap;
 
 /// Problems of loading that are not in a source file.

@@ -473,7 +473,7 @@ fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
-    signals: &Arc<crate::io::SignalTable>,
+    signals: &Arc<crate::signals::SignalTable>,
     egm_devices: Option<&egm::DeviceUse>,
     view: Option<&view::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {

@@ -11,9 +11,9 @@ use std::sync::{Arc, Mutex};
 
 use super::{program, render};
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
-use crate::io::SignalTable;
 use crate::ir::RoutineKind;
 use crate::load;
+use crate::signals::SignalTable;
 
 /// Arguments of `rapidvc test`.
 #[derive(Debug, clap::Args)]

@@ -46,10 +46,10 @@ use crate::egm::session::DropCounts;
 use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
-use crate::io::SignalTable;
 use crate::motion::{CoreMode, ExternalGuidance, InstrRef};
 use crate::report::{EgmTraceState, Feed};
 use crate::robot::{Pose, Robot};
+use crate::signals::SignalTable;
 
 use super::{Condition, ControllerError, ControllerHandle};
 

@@ -16,12 +16,12 @@ use std::time::Duration;
 
 use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAreaMode, no_robot};
 use crate::interp::{Host, HostError, VirtualHost};
-use crate::io::SignalTable;
 use crate::motion::{MotionEvent, MotionState, RobotTime, SingArea};
 use crate::robot::command::{EXTAX_NONE, MotionCommand, RobTarget};
 use crate::robot::{
     JointsDeg, Pose, ToolData, WobjData, flange_target, pose_to_pos_quat, target_from_flange,
 };
+use crate::signals::SignalTable;
 use crate::source::SourceMap;
 
 use super::ControllerError;

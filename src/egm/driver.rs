@@ -85,8 +85,8 @@ use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
     RapidExecState, RobotFeedback, SensorReference, Target,
 };
-use crate::io::{SignalId, SignalTable};
 use crate::robot::{Pose, Robot, ToolData, WobjData};
+use crate::signals::{SignalId, SignalTable};
 
 mod corrections;
 mod delay;

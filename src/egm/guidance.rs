@@ -1,7 +1,7 @@
 //! Pure geometry of EGM position guidance: frame types, the pose-mode target pipeline (sensor pose → TCP → flange → IK nearest), convergence errors, Cartesian feedback, speed references and signal sources.
 //!
 //! Everything here is math over the virtual robot ([`crate::robot`]) and the I/O table
-//! ([`crate::io`]): no time, no sockets, no servo state. The motion core builds a
+//! ([`crate::signals`]): no time, no sockets, no servo state. The motion core builds a
 //! [`PoseGuidance`] once when `EGMRunPose` starts (frames frozen there) and calls it every
 //! EGM cycle; the servo law itself (`egm::servo`) works on the joint vectors it returns.
 //!
@@ -57,8 +57,8 @@ mod speed;
 
 use std::fmt;
 
-use crate::io::{IoError, SignalKind};
 use crate::robot::KinError;
+use crate::signals::{IoError, SignalKind};
 
 pub use convergence::{Convergence, pose_error};
 pub use frames::{FeedbackMode, PoseGuidance, PoseSetup, base_of, feedback_in_wobj};

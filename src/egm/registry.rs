@@ -47,9 +47,9 @@ use crate::egm::guidance::{Convergence, EgmFrameType, GuidanceError, PoseSetup, 
 use crate::egm::pathcorr::SeamProfile;
 use crate::egm::servo::MinMax;
 use crate::egm::types::{EgmMode, ROBOT_AXES};
-use crate::io::SignalTable;
 use crate::robot::Pose;
 use crate::robot::units::pose_is_finite;
+use crate::signals::SignalTable;
 
 mod activate;
 mod args;

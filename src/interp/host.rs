@@ -39,9 +39,9 @@ use std::fmt;
 use std::sync::Arc;
 
 use super::errnum;
-use crate::io::{IoError, SignalTable};
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
+use crate::signals::{IoError, SignalTable};
 
 mod egm;
 mod egm_path;

@@ -31,12 +31,12 @@ use crate::egm::registry::{ActJoint, RegistryConfig, RunArgs, SetupUc};
 use crate::egm::servo::StopMode;
 use crate::egm::stats::{LatencyHistogram, fmt_duration};
 use crate::egm::{DriverOptions, EgmMode, proto};
-use crate::io::SignalTable;
 use crate::motion::{Executor, RobotTime, Setpoint};
 use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
 use crate::robot::{Pose, Robot, ToolData, WobjData};
+use crate::signals::SignalTable;
 
 const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
 

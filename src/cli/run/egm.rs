@@ -10,9 +10,9 @@ use crate::controller::egm::{EgmController, EgmHook, EgmSetup};
 use crate::egm::DriverOptions;
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::registry::RegistryConfig;
-use crate::io::SignalTable;
 use crate::report::Feed;
 use crate::robot::Robot;
+use crate::signals::SignalTable;
 
 /// EGM options of `rapidvc run`.
 #[derive(Debug, Clone, Default, clap::Args)]

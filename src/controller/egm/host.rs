@@ -10,9 +10,9 @@ use crate::egm::registry::{
 };
 use crate::egm::servo::StopMode;
 use crate::interp::host::{EgmHost, EgmRun, HostError};
-use crate::io::SignalId;
 use crate::ir::errnum;
 use crate::motion::InstrRef;
+use crate::signals::SignalId;
 use crate::source::Span;
 
 use super::{EgmController, EgmFailure, LastMove};

@@ -13,13 +13,13 @@ use crate::controller::{ControllerConfig, TickSink};
 use crate::egm::DriverOptions;
 use crate::egm::registry::{ActMove, RegistryConfig, SetupLtapp, SetupUc};
 use crate::egm::types::EgmMode;
-use crate::io::SignalTable;
 use crate::motion::{RobotTime, Setpoint};
 use crate::report::{FeedItem, FeedRx, PathCorrSample};
 use crate::robot::command::{
     EXTAX_NONE, MoveArgs, MoveC, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };
 use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
+use crate::signals::SignalTable;
 
 /// Level 2 profile "pathCorr" (the manual's MOC.cfg).
 fn moc() -> MocConfig {

@@ -23,8 +23,8 @@ use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState,
     RobotFeedback, Target,
 };
-use crate::io::SignalTable;
 use crate::robot::{Robot, ToolData, WobjData};
+use crate::signals::SignalTable;
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};

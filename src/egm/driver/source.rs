@@ -11,7 +11,7 @@ use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};
 use crate::egm::transport::{DEFAULT_DRAIN_LIMIT, UdpTransport};
-use crate::io::SignalKind;
+use crate::signals::SignalKind;
 
 use super::EventQueue;
 

@@ -14,9 +14,9 @@
 use nalgebra::Translation3;
 
 use super::{DIRECTIONS, GuidanceError};
-use crate::io::{IoError, SignalId, SignalKind, SignalTable};
 use crate::robot::units::{quat_from_euler_zyx_deg, quat_to_euler_zyx_deg};
 use crate::robot::{JointsDeg, Pose};
+use crate::signals::{IoError, SignalId, SignalKind, SignalTable};
 
 /// Number of additional-axis signals (`\<p>E1` … `\<p>E6`).
 pub const EXTERNAL_SIGNALS: usize = 6;
@@ -178,11 +178,11 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 
     use super::*;
-    use crate::io::SignalDef;
     use crate::robot::units::pose_from_pos_quat;
+    use crate::signals::SignalDef;
 
     fn table() -> SignalTable {
-        let mut defs = crate::io::builtin_signals();
+        let mut defs = crate::signals::builtin_signals();
         defs.push(SignalDef::analog("ai_X", SignalKind::Ai, -1000.0, 1000.0));
         defs.push(SignalDef::group("gi_J1", SignalKind::Gi, 16));
         defs.push(SignalDef::analog("ao_E1", SignalKind::Ao, -1000.0, 1000.0));

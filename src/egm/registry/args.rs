@@ -3,8 +3,8 @@
 use crate::egm::guidance::EgmFrameType;
 use crate::egm::servo::{MinMax, StopMode};
 use crate::egm::types::EgmMode;
-use crate::io::{SignalId, SignalKind};
 use crate::robot::{LoadData, Pose, ToolData, WobjData};
+use crate::signals::{SignalId, SignalKind};
 
 use super::EgmError;
 

@@ -9,8 +9,8 @@ use crate::egm::pathcorr::SeamProfile;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::{MinMax, ServoParams, StopMode};
 use crate::egm::types::{EgmMode, ROBOT_AXES};
-use crate::io::{SignalId, SignalKind};
 use crate::robot::{LoadData, Pose, Robot, ToolData, WobjData};
+use crate::signals::{SignalId, SignalKind};
 
 use super::{EgmId, TrackerKind};
 

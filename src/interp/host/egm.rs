@@ -10,8 +10,8 @@ use crate::egm::registry::{
     ActJoint, ActMove, ActPose, CorrState, EgmState, RunArgs, SetupLtapp, SetupSignals, SetupUc,
 };
 use crate::egm::servo::StopMode;
-use crate::io::SignalId;
 use crate::robot::Pose;
+use crate::signals::SignalId;
 use crate::source::Span;
 
 use super::HostError;

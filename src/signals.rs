@@ -5,7 +5,7 @@
 //! a [`SignalTable`] behind an `Arc`. Look a name up once ([`SignalTable::lookup`],
 //! case-insensitive) and keep the [`SignalId`]: every read after that is one atomic load.
 //!
-//! # Decisions (pinned by the tests in `io/table.rs`)
+//! # Decisions (pinned by the tests in `signals/table.rs`)
 //!
 //! * Values are **logical** values stored as `f64`: digital 0/1, analog in
 //!   `min_log..=max_log`, group an integer in `0..=2^bits − 1`.
@@ -22,10 +22,10 @@
 //!   `n` means `n` changes happened since the last poll (for a digital signal they alternate,
 //!   so edges can be reconstructed from the count and the current value).
 
-mod signal;
+mod definitions;
 mod table;
 
-pub use signal::{MAX_GROUP_BITS, SignalDef, SignalKind, builtin_signals, merge_defs};
+pub use definitions::{MAX_GROUP_BITS, SignalDef, SignalKind, builtin_signals, merge_defs};
 pub use table::{SignalId, SignalTable};
 
 /// An error from the signal table.
