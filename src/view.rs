@@ -4,7 +4,7 @@
 //! The view is one more reader of the controller's per-cycle stream, like the trace and the
 //! plot: a [`ViewSink`] among the controller's [`TickSink`]s records the motion cycles (thinned
 //! to what the page can draw within a tolerance, [`decimate`]), and the EGM and
-//! path-correction samples of the report [`Feed`](crate::report::Feed); the program's TP
+//! path-correction samples of the output [`Feed`](crate::output::Feed); the program's TP
 //! output and events reach it through [`ViewSession::output`], stamped with the robot time
 //! of the last recorded cycle. Nothing here runs in the motion cycle: in real time the sink
 //! runs on the recorder thread, and the live stream is a bounded broadcast that drops the
@@ -32,7 +32,7 @@ use crate::interp::Output;
 use crate::interp::pers::PersValue;
 use crate::interp::value::Value;
 use crate::motion::Setpoint;
-use crate::report::{FeedItem, FeedRx};
+use crate::output::{FeedItem, FeedRx};
 use crate::robot::{Pose, Robot, pose_from_pos_quat};
 use crate::source::{SourceId, SourceMap};
 

@@ -14,7 +14,7 @@ use crate::controller::{
     RealtimeConfig, TickSink,
 };
 use crate::motion::RobotTime;
-use crate::report::TraceWriter;
+use crate::output::TraceWriter;
 use crate::robot::command::{
     EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };

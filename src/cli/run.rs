@@ -26,7 +26,7 @@ use crate::controller::{
 };
 use crate::interp::{Interp, Outcome, Output, pers};
 use crate::motion::CoreConfig;
-use crate::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
+use crate::output::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
 use crate::source::SourceMap;
 
@@ -465,7 +465,7 @@ fn start_view(
 }
 
 /// The controller of this run: robot, period, start position, clock, trace, plot and view,
-/// and its EGM side (devices, clock choice, report feed, `--egm-log`).
+/// and its EGM side (devices, clock choice, output feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
 /// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
 /// program sets up, `None` when it uses no EGM.

@@ -47,7 +47,7 @@ use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
 use crate::motion::{CoreMode, ExternalGuidance, InstrRef};
-use crate::report::{EgmTraceState, Feed};
+use crate::output::{EgmTraceState, Feed};
 use crate::robot::{Pose, Robot};
 use crate::signals::SignalTable;
 

@@ -33,7 +33,7 @@
 //!   EGMActMove rate (`EgmRobot`; simulated seams and signals are sampled instead), gives the
 //!   corrections that come back to the corrector — a rejected one (NaN: 90104; too large or
 //!   too old: 90132) is an event and the previous correction stays — and pushes one
-//!   path-correction sample (arc length, correction in y and z) into the report feed.
+//!   path-correction sample (arc length, correction in y and z) into the output feed.
 //! * The fine point ending the sequence ends it: the hook removes the correction (the robot
 //!   stays on the corrected path), the registry goes back to CONNECTED. A move that is not an
 //!   EGM move after a corrected fly-by point stops the robot with the same manual wording
@@ -57,7 +57,7 @@ use crate::egm::event::EgmEvent;
 use crate::egm::pathcorr::{PathCorrConfig, Tracker};
 use crate::egm::registry::TrackerKind;
 use crate::egm::{CorrectionLink, DriverContext, EgmError, EgmId, EgmRegistry, EgmSource};
-use crate::report::Feed;
+use crate::output::Feed;
 use crate::robot::command::MotionCommand;
 
 use super::ControllerError;

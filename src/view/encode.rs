@@ -5,7 +5,7 @@
 
 use serde_json::{Value, json};
 
-use crate::report::{EgmAxes, EgmTraceState};
+use crate::output::{EgmAxes, EgmTraceState};
 use crate::robot::units::m_to_mm;
 
 use super::Scene;

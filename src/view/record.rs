@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use crate::interp::Output;
 use crate::motion::Setpoint;
-use crate::report::{EgmAxes, EgmSample, EgmTraceState, FeedItem, PathCorrSample};
+use crate::output::{EgmAxes, EgmSample, EgmTraceState, FeedItem, PathCorrSample};
 use crate::source::SourceMap;
 
 use super::decimate::Thinner;

@@ -10,7 +10,7 @@ use crate::controller::egm::{EgmController, EgmHook, EgmSetup};
 use crate::egm::DriverOptions;
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::registry::RegistryConfig;
-use crate::report::Feed;
+use crate::output::Feed;
 use crate::robot::Robot;
 use crate::signals::SignalTable;
 

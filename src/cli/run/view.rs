@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use crate::controller::TickSink;
 use crate::interp::Interp;
-use crate::report::FeedRx;
+use crate::output::FeedRx;
 use crate::robot::Robot;
 use crate::source::SourceMap;
 use crate::view::live::LiveServer;

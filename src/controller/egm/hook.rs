@@ -1,4 +1,4 @@
-//! The EGM side of every motion cycle ([`EgmHook`], a [`CycleHook`]): position streams are ticked with the cycle's setpoint, the running EGM run's events and log rows are handed out (event channel, `--egm-log` writer, report feed), lockstep waits for the sensor's reply, and a run that ended is handed back to the program side.
+//! The EGM side of every motion cycle ([`EgmHook`], a [`CycleHook`]): position streams are ticked with the cycle's setpoint, the running EGM run's events and log rows are handed out (event channel, `--egm-log` writer, output feed), lockstep waits for the sensor's reply, and a run that ended is handed back to the program side.
 //!
 //! Runs on the motion thread in real time and inline in virtual time. It never blocks
 //! (bounded channels with `try_send`, a `try_lock` on the stream list) except for the
@@ -18,7 +18,7 @@ use crate::egm::registry::EgmId;
 use crate::egm::types::RapidExecState;
 use crate::egm::{EgmEvent, EgmStream};
 use crate::motion::{Executor, ExternalGuidance, RobotTime, Setpoint};
-use crate::report::{EgmAxes, EgmTraceState, Feed};
+use crate::output::{EgmAxes, EgmTraceState, Feed};
 
 use super::guidance::EgmGuidance;
 

@@ -1,4 +1,4 @@
-//! The motion side of path correction: [`PathCorrHook`], a `CycleHook` that installs each corrected sequence into the executor, runs its sensor link every cycle, feeds measurements to the corrector and path-correction samples to the report.
+//! The motion side of path correction: [`PathCorrHook`], a `CycleHook` that installs each corrected sequence into the executor, runs its sensor link every cycle, feeds measurements to the corrector and path-correction samples to the output feed.
 
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, SyncSender, TryRecvError, TrySendError};
@@ -10,7 +10,7 @@ use crate::egm::driver::CorrectionInput;
 use crate::egm::event::EgmEvent;
 use crate::egm::log::LogRow;
 use crate::motion::{Executor, RobotTime, Setpoint};
-use crate::report::{EgmTraceState, Feed, FeedItem, PathCorrSample};
+use crate::output::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::robot::{ToolData, WobjData};
 
 use super::seam::{SeamCorrection, rejection_kind};

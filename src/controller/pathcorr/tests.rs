@@ -14,7 +14,7 @@ use crate::egm::DriverOptions;
 use crate::egm::registry::{ActMove, RegistryConfig, SetupLtapp, SetupUc};
 use crate::egm::types::EgmMode;
 use crate::motion::{RobotTime, Setpoint};
-use crate::report::{FeedItem, FeedRx, PathCorrSample};
+use crate::output::{FeedItem, FeedRx, PathCorrSample};
 use crate::robot::command::{
     EXTAX_NONE, MoveArgs, MoveC, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };

@@ -401,7 +401,7 @@ fn decimals(span: f64) -> usize {
 
 /// A tick label with `d` decimals and no negative zero.
 fn format_tick(v: f64, d: usize) -> String {
-    super::super::num::fixed(v, d)
+    super::super::number_format::fixed(v, d)
 }
 
 #[cfg(test)]

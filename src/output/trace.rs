@@ -31,7 +31,7 @@ use crate::robot::units::quat_to_wxyz;
 use crate::source::SourceMap;
 
 use super::feed::{EgmAxes, EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample};
-use super::num::{canonical_quat, push_fixed, push_time};
+use super::number_format::{canonical_quat, push_fixed, push_time};
 
 /// The header of every trace.
 pub const TRACE_HEADER: [&str; 18] = [
@@ -358,7 +358,7 @@ impl<W: Write + Send> TickSink for TraceWriter<W> {
 mod tests {
     use super::*;
     use crate::motion::{InstrRef, RobotTime};
-    use crate::report::feed::Feed;
+    use crate::output::feed::Feed;
     use crate::robot::Pose;
 
     fn sp(tick: u64) -> Setpoint {

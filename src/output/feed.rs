@@ -1,4 +1,4 @@
-//! The controller's side channel into the report: EGM samples, EGM state changes and
+//! The controller's side channel into the outputs: EGM samples, EGM state changes and
 //! path-correction samples, pushed around the motion cycle (no allocation, never blocking) and
 //! consumed by the trace and plot sinks in robot-time order.
 //!
@@ -7,7 +7,7 @@
 //! ```
 //! # fn main() -> Result<(), String> {
 //! # let dir = std::env::temp_dir();
-//! use rapidvc::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
+//! use rapidvc::output::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 //!
 //! let mut feed = Feed::new();
 //! // Every consumer subscribes before the feed is handed to the producer.

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use super::panel::{Curve, Panel, Spans, Stroke, VLine};
 use super::{FONT, JOINT_COLORS, PlotData, XYZ_COLORS, keep};
-use crate::report::feed::{EgmAxes, EgmSample, EgmTraceState};
+use crate::output::feed::{EgmAxes, EgmSample, EgmTraceState};
 
 /// Heights (px) of a block's title, one row of reference/feedback charts and the error chart.
 const TITLE_H: u32 = 50;

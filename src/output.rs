@@ -3,7 +3,7 @@
 //! the controller feeds them through a [`Feed`]. Both are [`crate::controller::TickSink`]s.
 
 pub mod feed;
-pub mod num;
+pub mod number_format;
 pub mod plot;
 pub mod progress;
 pub mod trace;

@@ -5,9 +5,9 @@
 //! [`PlotRecorder::with_feed`]), sections below show EGM reference against feedback and the
 //! tracking error, and the programmed, measured and corrected path in the path frame.
 
-mod egm;
+mod egm_section;
 mod panel;
-mod pathcorr;
+mod pathcorr_section;
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Once};
@@ -224,7 +224,7 @@ pub fn render(path: &Path, data: &PlotData) -> Result<(), String> {
 
 fn total_height(data: &PlotData) -> u32 {
     let mut h = SIZE.1;
-    h += egm::height(data);
+    h += egm_section::height(data);
     if !data.pathcorr.is_empty() {
         h += PATHCORR_HEIGHT;
     }
@@ -253,7 +253,7 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, data: &PlotData) -> R
         .titled(&data.title, (FONT, 32).into_font().color(&BLACK))
         .map_err(err)?;
     let (_, h) = root.dim_in_pixel();
-    let egm_h = egm::height(data);
+    let egm_h = egm_section::height(data);
     let pathcorr_h = if data.pathcorr.is_empty() {
         0
     } else {
@@ -264,10 +264,10 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, data: &PlotData) -> R
     let (egm_area, pathcorr_area) = rest.split_vertically(egm_h);
     draw_motion(&motion, data).map_err(err)?;
     if egm_h > 0 {
-        egm::draw(&egm_area, data).map_err(err)?;
+        egm_section::draw(&egm_area, data).map_err(err)?;
     }
     if !data.pathcorr.is_empty() {
-        pathcorr::draw(&pathcorr_area, data).map_err(err)?;
+        pathcorr_section::draw(&pathcorr_area, data).map_err(err)?;
     }
     Ok(())
 }
@@ -370,7 +370,7 @@ fn align<DB: DrawingBackend>(stack: &mut [(Panel<'_>, &DrawingArea<DB, Shift>)])
 mod tests {
     use super::*;
     use crate::motion::RobotTime;
-    use crate::report::feed::{EgmAxes, EgmSample};
+    use crate::output::feed::{EgmAxes, EgmSample};
 
     #[test]
     fn hostile_values_render_without_panicking() {
