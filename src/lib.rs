@@ -29,4 +29,3 @@ pub mod rtlib;
 pub mod sema;
 pub mod signals;
 pub mod source;
-pub mod view;

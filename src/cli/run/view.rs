@@ -1,6 +1,6 @@
 //! The view options of `rapidvc run`: `--view FILE.html` (a replay page written when the run
 //! ends) and `--view-live [ADDR]` (a page served while the program runs, with the robot's
-//! state streamed over a WebSocket). See [`crate::view`].
+//! state streamed over a WebSocket). See [`crate::output::view`].
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
@@ -11,10 +11,10 @@ use std::time::Duration;
 use crate::controller::TickSink;
 use crate::interp::Interp;
 use crate::output::FeedRx;
+use crate::output::view::live::LiveServer;
+use crate::output::view::{Scene, ViewSession};
 use crate::robot::Robot;
 use crate::source::SourceMap;
-use crate::view::live::LiveServer;
-use crate::view::{Scene, ViewSession};
 
 /// Where the live view listens when `--view-live` names no address: loopback, a free port.
 pub const DEFAULT_LIVE_ADDR: SocketAddr = SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), 0);

@@ -10,7 +10,7 @@
 //! runs on the recorder thread, and the live stream is a bounded broadcast that drops the
 //! oldest messages for a viewer that falls behind.
 //!
-//! The page (`src/view/assets/`: plain JavaScript, WebGL and a 2D canvas, no third-party
+//! The page (`src/output/view/assets/`: plain JavaScript, WebGL and a 2D canvas, no third-party
 //! code) draws the arm from the robot model's OPW parameters with the same joint chain as
 //! [`kinematics::joint_frames`], and is embedded with its data into one HTML file that needs
 //! no network.

@@ -1,6 +1,6 @@
 // rapidvc view: replays a run (or follows a live one) in 3D with WebGL, beside the RAPID
 // source, the TP output, the events and the EGM / path-correction curves. Plain JavaScript,
-// no libraries. The data format is written by src/view/encode.rs.
+// no libraries. The data format is written by src/output/view/encode.rs.
 'use strict';
 (function () {
   const T0 = performance.now();
@@ -181,7 +181,7 @@
   }
 
   // ---------------------------------------------------------------- kinematics -----------
-  // The joint frames of the OPW chain (src/view/kinematics.rs, joint_frames): axis 1 at the
+  // The joint frames of the OPW chain (src/output/view/kinematics.rs, joint_frames): axis 1 at the
   // height of axis 2, axes 2, 3, 4, 5 and the flange. ABB's axis 3 is the OPW angle − 90°.
   function jointFrames(q) {
     const o = M.scene.robot.opw;
