@@ -1,4 +1,4 @@
-//! Pure runtime-library functions behind RAPID's built-ins: number text, num/dnum arithmetic, strings and poses.
+//! Pure implementations of RAPID's predefined functions and value semantics behind the built-ins: number text, num/dnum arithmetic, strings and poses.
 //!
 //! Everything here works on plain Rust types (`f32` for `num`, `f64` for `dnum`, `&str`,
 //! `[f64; 3]` positions, `[f64; 4]` quaternions) and never touches interpreter state. The
