@@ -3,7 +3,7 @@
 //! `MotionCore::tick(now)` that plays the planned samples under supervision.
 //!
 //! Nothing here sleeps, spawns threads, opens sockets or reads the operating system's clock;
-//! `controller::rt` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
+//! `controller::motion_thread` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
 //!
 //! Design: every move is planned completely when it is queued (the inverse kinematics of every
 //! cycle of a linear move included), so errors surface before the robot moves and the cycle

@@ -4,7 +4,7 @@ use std::sync::Arc;
 use std::sync::mpsc::{Receiver, SyncSender, TryRecvError, TrySendError};
 use std::time::Duration;
 
-use crate::controller::hook::CycleHook;
+use crate::controller::cycle_hook::CycleHook;
 use crate::egm::CorrectionLink;
 use crate::egm::driver::CorrectionInput;
 use crate::egm::event::EgmEvent;

@@ -8,8 +8,8 @@ use crate::motion::{
     MotionCore, MotionEvent, RobotTime, Setpoint, VirtualClock, VirtualClockHandle,
 };
 
-use super::hook::CycleHook;
-use super::sink::TickSink;
+use super::cycle_hook::CycleHook;
+use super::tick_sink::TickSink;
 
 /// The virtual-time driver of a controller handle.
 pub(super) struct VirtualDriver {

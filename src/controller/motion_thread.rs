@@ -1,6 +1,6 @@
 //! The thin real-time shell: the motion thread that sleeps until the next cycle, takes new
 //! segments and control requests, calls `Executor::tick(now)`, and publishes the setpoint,
-//! events and state. The only code that sleeps; together with `controller::realtime` the only
+//! events and state. The only code that sleeps; together with `controller::realtime_driver` the only
 //! code that spawns threads.
 //!
 //! Each cycle: sleep until shortly before the deadline, spin the last stretch (to hold the
@@ -17,9 +17,9 @@ use crate::motion::{
 };
 use crate::robot::ToolData;
 
-use super::hook::CycleHook;
-use super::monotonic::MonotonicClock;
-use super::stats::PeriodStats;
+use super::cycle_hook::CycleHook;
+use super::monotonic_clock::MonotonicClock;
+use super::period_stats::PeriodStats;
 
 /// Requests from the controller handle to the motion thread (rare: sizes do not matter).
 #[allow(clippy::large_enum_variant)]

@@ -1,4 +1,4 @@
-//! Real time: the executor runs on its own motion thread (`controller::rt`) against the
+//! Real time: the executor runs on its own motion thread (`controller::motion_thread`) against the
 //! monotonic clock; planning stays on the caller's thread; a recorder thread feeds the sinks.
 
 use std::sync::mpsc::{self, Receiver, SyncSender};
@@ -10,11 +10,11 @@ use crate::motion::segment::Segment;
 use crate::motion::{Executor, MotionEvent, Planner, Setpoint};
 
 use super::ControllerError;
-use super::hook::CycleHook;
-use super::monotonic::MonotonicClock;
+use super::cycle_hook::CycleHook;
+use super::monotonic_clock::MonotonicClock;
+use super::motion_thread::{Control, Published, RtExit, RtLoop, Shared};
 use super::priority::{RealtimeConfig, make_current_thread_realtime};
-use super::rt::{Control, Published, RtExit, RtLoop, Shared};
-use super::sink::TickSink;
+use super::tick_sink::TickSink;
 
 /// Setpoints buffered for the recorder thread (≈ 65 s at 4 ms).
 const RECORD_BUFFER: usize = 16_384;
@@ -111,7 +111,7 @@ impl RealTimeDriver {
                 if failed {
                     // Dropping the loop closes the record channel: the recorder ends too.
                     return RtExit {
-                        stats: super::stats::PeriodStats::new(),
+                        stats: super::period_stats::PeriodStats::new(),
                         dropped_records: 0,
                         ticks: 0,
                         last: *rt_loop.exec.setpoint(),
