@@ -2,7 +2,7 @@
 
 use crate::controller::ControllerError;
 use crate::controller::egm::{EgmFailure, EgmParts, host_error};
-use crate::controller::host::motion_error;
+use crate::controller::program_host::motion_error;
 use crate::egm::EgmError;
 use crate::interp::Host;
 use crate::interp::host::{EgmPathHost, HostError, MotionWait};

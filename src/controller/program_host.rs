@@ -7,8 +7,8 @@
 //! The struct is built with `ControllerHost::new(handle)` and `with_*` methods, so other
 //! capabilities (EGM) can add fields and builders without touching the callers.
 
-mod egm;
-mod events;
+mod egm_parts;
+mod motion_events;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -30,9 +30,9 @@ use super::egm::{EgmController, LastMove};
 use super::handle::ControllerHandle;
 use super::summary::RunSummary;
 use crate::interp::host::EgmHost;
-use events::stopped_error;
+use motion_events::stopped_error;
 
-pub use events::{describe_event, kin_error, motion_error};
+pub use motion_events::{describe_event, kin_error, motion_error};
 
 /// The interpreter's host on a running controller (see the module docs).
 pub struct ControllerHost {
