@@ -8,12 +8,12 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 pub mod condition;
+pub mod corrected_moves;
 pub mod cycle_hook;
-pub mod egm;
+pub mod egm_controller;
 pub mod handle;
 pub mod monotonic_clock;
 mod motion_thread;
-pub mod pathcorr;
 pub mod period_stats;
 pub mod priority;
 pub mod program_host;

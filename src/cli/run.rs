@@ -19,7 +19,7 @@ use super::{interrupt, num, program, progress_line, render};
 
 pub mod egm;
 pub mod view;
-use crate::controller::egm::EgmController;
+use crate::controller::egm_controller::EgmController;
 use crate::controller::{
     ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, CycleHook,
     RealtimeConfig, RunSummary, TickSink,

@@ -26,7 +26,7 @@ use crate::source::SourceMap;
 
 use super::ControllerError;
 use super::condition::Condition;
-use super::egm::{EgmController, LastMove};
+use super::egm_controller::{EgmController, LastMove};
 use super::handle::ControllerHandle;
 use super::summary::RunSummary;
 use crate::interp::host::EgmHost;

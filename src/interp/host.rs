@@ -32,7 +32,7 @@
 //! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM
 //! instructions then stop the program with "… is not supported by this controller"). The
 //! natives in `interp/builtins/egm.rs` fill the registry's request types from RAPID values
-//! and name identities by their variable; `controller::egm` implements the capability for
+//! and name identities by their variable; `controller::egm_controller` implements the capability for
 //! any controller-backed host.
 
 use std::fmt;

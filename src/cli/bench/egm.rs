@@ -22,7 +22,7 @@ use prost::Message;
 
 use crate::config::devices::DeviceTable;
 use crate::config::moc::MocConfig;
-use crate::controller::egm::{EgmController, EgmHook, EgmSetup, LastMove};
+use crate::controller::egm_controller::{EgmController, EgmHook, EgmSetup, LastMove};
 use crate::controller::{
     ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, CycleHook,
     RealtimeConfig,
@@ -332,7 +332,7 @@ fn drive(
     };
     let mut handle = ControllerHandle::start_with_hook(config, Vec::new(), Some(Box::new(probe)))
         .map_err(ctl_err)?;
-    let fail = |e: crate::controller::egm::EgmFailure| e.to_string();
+    let fail = |e: crate::controller::egm_controller::EgmFailure| e.to_string();
     handle
         .submit(MotionCommand::MoveAbsJ(MoveAbsJ {
             args: MoveArgs {

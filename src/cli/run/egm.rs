@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use crate::config::Config;
 use crate::config::devices::DeviceOverride;
-use crate::controller::egm::{EgmController, EgmHook, EgmSetup};
+use crate::controller::egm_controller::{EgmController, EgmHook, EgmSetup};
 use crate::egm::DriverOptions;
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::registry::RegistryConfig;

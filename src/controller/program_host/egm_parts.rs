@@ -1,7 +1,7 @@
-//! The EGM capability of [`ControllerHost`]: it lends its [`EgmController`] and controller to [`crate::controller::egm`]'s blanket [`crate::interp::host::EgmHost`] implementation.
+//! The EGM capability of [`ControllerHost`]: it lends its [`EgmController`] and controller to [`crate::controller::egm_controller`]'s blanket [`crate::interp::host::EgmHost`] implementation.
 
 use crate::controller::ControllerHandle;
-use crate::controller::egm::{EgmController, EgmParts, LastMove};
+use crate::controller::egm_controller::{EgmController, EgmParts, LastMove};
 use crate::interp::Host;
 use crate::interp::host::Output;
 use crate::motion::InstrRef;

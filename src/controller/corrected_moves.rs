@@ -14,9 +14,9 @@
 //! events for the event log: pc.take_events()
 //! ```
 //!
-//! In `rapidvc run` the EGM controller (`controller::egm`) owns the program side and its cycle
+//! In `rapidvc run` the EGM controller (`controller::egm_controller`) owns the program side and its cycle
 //! hook the motion side; `ControllerHost` offers the interpreter's `EgmPathHost` through the
-//! blanket implementation in `pathcorr/host.rs`.
+//! blanket implementation in `corrected_moves/egm_move_instructions.rs`.
 //!
 //! # What happens
 //!
@@ -46,9 +46,9 @@
 //! sent a message wait (real time) for the sensor's reply, as for EGM guidance.
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-mod hook;
-mod host;
-mod seam;
+mod correction_hook;
+mod egm_move_instructions;
+mod seam_correction;
 
 use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
 
@@ -62,15 +62,15 @@ use crate::robot::command::MotionCommand;
 
 use super::ControllerError;
 use super::condition::Condition;
-use super::egm::LastMove;
+use super::egm_controller::LastMove;
 use super::handle::ControllerHandle;
 
-use hook::Request;
-pub use hook::{HookOptions, NamedLogRow, PathCorrHook, Report};
-use seam::{CorrectedMove, SeamCorrection};
+use correction_hook::Request;
+pub use correction_hook::{HookOptions, NamedLogRow, PathCorrHook, Report};
+use seam_correction::{CorrectedMove, SeamCorrection};
 
 /// Requests that may wait for the hook (a sequence's moves plus begin and end).
-const REQUEST_CAPACITY: usize = seam::MAX_MOVES + 8;
+const REQUEST_CAPACITY: usize = seam_correction::MAX_MOVES + 8;
 /// Reports that may wait for the program side.
 const REPORT_CAPACITY: usize = 4096;
 

@@ -13,7 +13,7 @@ use crate::motion::{Executor, RobotTime, Setpoint};
 use crate::output::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::robot::{ToolData, WobjData};
 
-use super::seam::{SeamCorrection, rejection_kind};
+use super::seam_correction::{SeamCorrection, rejection_kind};
 use crate::egm::pathcorr::Rejection;
 
 /// Rejected corrections are reported at most this often.
@@ -24,7 +24,7 @@ pub(super) enum Request {
     /// Start a corrected sequence: install the correction, start exchanging with the sensor.
     Begin(Box<(SeamCorrection, CorrectionLink, Arc<str>)>),
     /// A move of the running sequence (sent before the move is queued).
-    Move(Box<super::seam::CorrectedMove>),
+    Move(Box<super::seam_correction::CorrectedMove>),
     /// The sequence ended (its fine point was reached, or it was abandoned).
     End,
 }
@@ -56,7 +56,7 @@ pub struct HookOptions {
     pub reply_timeout: Duration,
 }
 
-/// The motion side of path correction (see the module docs of `controller::pathcorr`).
+/// The motion side of path correction (see the module docs of `controller::corrected_moves`).
 pub struct PathCorrHook {
     requests: Receiver<Request>,
     reports: SyncSender<Report>,

@@ -1,7 +1,7 @@
 //! The interpreter's [`EgmPathHost`] for any controller-backed host with EGM ([`EgmParts`] plus [`Host`]): EGMMoveL/EGMMoveC go to the [`super::PathCorr`] of its EGM controller; failures become RAPID errors (`ERR_UDPUC_COMM`) or fatal errors, path-correction events become program output.
 
 use crate::controller::ControllerError;
-use crate::controller::egm::{EgmFailure, EgmParts, host_error};
+use crate::controller::egm_controller::{EgmFailure, EgmParts, host_error};
 use crate::controller::program_host::motion_error;
 use crate::egm::EgmError;
 use crate::interp::Host;

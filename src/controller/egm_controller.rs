@@ -53,17 +53,17 @@ use crate::signals::SignalTable;
 
 use super::{Condition, ControllerError, ControllerHandle};
 
-mod guidance;
-mod hook;
-mod host;
-mod logger;
+mod egm_hook;
+mod egm_instructions;
+mod message_log_thread;
+mod run_guidance;
 
-use super::pathcorr::{PathCorr, path_correction_for};
-use guidance::{EgmGuidance, RunControl};
-pub use hook::EgmHook;
-use hook::{NamedEvent, Shared, StreamSlot};
-pub use host::{EgmParts, host_error};
-use logger::Logger;
+use super::corrected_moves::{PathCorr, path_correction_for};
+pub use egm_hook::EgmHook;
+use egm_hook::{NamedEvent, Shared, StreamSlot};
+pub use egm_instructions::{EgmParts, host_error};
+use message_log_thread::Logger;
+use run_guidance::{EgmGuidance, RunControl};
 
 /// Capacity of the event channel from the cycle hook.
 const EVENT_CAPACITY: usize = 1024;
@@ -207,7 +207,7 @@ pub struct EgmController {
     events: Vec<(String, EgmEvent)>,
     logger: Option<Logger>,
     capped_noted: bool,
-    /// EGMMoveL/EGMMoveC (`controller::pathcorr`).
+    /// EGMMoveL/EGMMoveC (`controller::corrected_moves`).
     pathcorr: PathCorr,
 }
 

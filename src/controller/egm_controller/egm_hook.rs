@@ -20,7 +20,7 @@ use crate::egm::{EgmEvent, EgmStream};
 use crate::motion::{Executor, ExternalGuidance, RobotTime, Setpoint};
 use crate::output::{EgmAxes, EgmTraceState, Feed};
 
-use super::guidance::EgmGuidance;
+use super::run_guidance::EgmGuidance;
 
 /// A running position stream.
 #[derive(Debug)]
@@ -65,8 +65,8 @@ pub struct EgmHook {
     pub(crate) log: Option<SyncSender<NamedRow>>,
     pub(crate) feed: Option<Feed>,
     pub(crate) lockstep: Option<Duration>,
-    /// EGMMoveL/EGMMoveC (`controller::pathcorr`).
-    pub(crate) pathcorr: crate::controller::pathcorr::PathCorrHook,
+    /// EGMMoveL/EGMMoveC (`controller::corrected_moves`).
+    pub(crate) pathcorr: crate::controller::corrected_moves::PathCorrHook,
 }
 
 impl std::fmt::Debug for EgmHook {

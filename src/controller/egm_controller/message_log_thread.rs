@@ -6,7 +6,7 @@ use std::thread::JoinHandle;
 
 use crate::egm::log::EgmLogWriter;
 
-use super::hook::NamedRow;
+use super::egm_hook::NamedRow;
 
 /// Rows buffered between the cycle and the writer (≈ 65 s of one identity at 4 ms).
 const ROW_BUFFER: usize = 16_384;
