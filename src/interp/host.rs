@@ -43,10 +43,10 @@ use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 use crate::signals::{IoError, SignalTable};
 
-mod egm;
-mod egm_path;
-pub use egm::{EgmHost, EgmRun};
-pub use egm_path::EgmPathHost;
+mod egm_host;
+mod egm_path_host;
+pub use egm_host::{EgmHost, EgmRun};
+pub use egm_path_host::EgmPathHost;
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
