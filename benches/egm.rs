@@ -13,10 +13,10 @@ use std::time::{Duration, Instant};
 use criterion::Criterion;
 use prost::Message;
 use rapidvc::egm::convert::{EncodeOptions, ReferenceLimits, decode_reference, fill_robot};
+use rapidvc::egm::latency::LatencyHistogram;
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
-use rapidvc::egm::stats::LatencyHistogram;
 use rapidvc::egm::transport::UdpTransport;
 use rapidvc::egm::{
     DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,

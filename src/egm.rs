@@ -9,14 +9,14 @@
 //! * [`transport`]: a thin `std::net::UdpSocket` shell that makes no protocol decisions.
 //! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
 //! * [`servo`]: the EGM control law the motion core calls each tick.
-//! * [`guidance`], [`pathcorr`]: pure pose-mode geometry and path-correction math.
+//! * [`geometry`], [`pathcorr`]: pure pose-mode geometry and path-correction math.
 //! * [`registry`]: the EGM identities of a task and their state machine — what every EGM
 //!   instruction checks and changes; it hands out plans with every default applied.
 //! * [`driver`]: one EGMRunJoint/EGMRunPose per tick ([`EgmDriver`]), position streams
 //!   ([`EgmStream`]) and the message side of path correction ([`CorrectionLink`]) over UdpUc,
 //!   the in-process built-in sensor or I/O signals.
-//! * [`log`]: the `--egm-log` rows and their CSV writer.
-//! * [`event`], [`stats`]: event-log entries and latency statistics.
+//! * [`message_log`]: the `--egm-log` rows and their CSV writer.
+//! * [`event`], [`latency`]: event-log entries and latency statistics.
 //!
 //! Nothing here may panic on input from the network: the lint wall below forbids `unwrap`,
 //! `expect` and panicking indexing outside tests.
@@ -30,8 +30,9 @@
 pub mod convert;
 pub mod driver;
 pub mod event;
-pub mod guidance;
-pub mod log;
+pub mod geometry;
+pub mod latency;
+pub mod message_log;
 pub mod pathcorr;
 mod presence;
 pub mod proto;
@@ -39,7 +40,6 @@ pub mod registry;
 pub mod sensor;
 pub mod servo;
 pub mod session;
-pub mod stats;
 pub mod transport;
 pub mod types;
 

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use prost::Message;
 use rapidvc::config::devices::{DeviceOverride, DeviceTable};
 use rapidvc::config::moc::MocConfig;
-use rapidvc::egm::log::{EgmLogWriter, LOG_COLUMNS, LogRow};
+use rapidvc::egm::message_log::{EgmLogWriter, LOG_COLUMNS, LogRow};
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::proto::egm_mci_state::MciStateType;
 use rapidvc::egm::registry::{ActJoint, ActPose, RunArgs, SetupSignals, SetupUc, StopTarget};
@@ -355,7 +355,7 @@ mod builtin {
         act.common.tool = Some(tool);
         act.corr_frame = pose_from_pos_quat([1200.0, 400.0, 900.0], [1.0, 0.0, 0.0, 0.0]);
         act.sensor_frame = tool.tframe;
-        act.sens_type = rapidvc::egm::guidance::EgmFrameType::Tool;
+        act.sens_type = rapidvc::egm::geometry::EgmFrameType::Tool;
         reg.act_pose(id, &act).unwrap();
         let args = RunArgs {
             cond_time: Some(0.5),

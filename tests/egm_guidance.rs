@@ -6,8 +6,7 @@
 // Expected values are quoted digit for digit from docs/robot.md and the manual.
 #![allow(clippy::approx_constant)]
 
-// The one line to change when the module moves under `egm` (`rapidvc::egm::guidance`).
-use rapidvc::egm::guidance;
+use rapidvc::egm::geometry as guidance;
 
 use guidance::{
     Convergence, EgmFrameType, FeedbackMode, GuidanceError, PoseGuidance, PoseSetup, SignalSource,

@@ -43,7 +43,7 @@ use std::time::Duration;
 use crate::config::devices::{DeviceTable, DeviceTarget};
 use crate::config::moc::{ExtMotionProfile, MocConfig, MotionLevel};
 use crate::config::sio::device_key;
-use crate::egm::guidance::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
+use crate::egm::geometry::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
 use crate::egm::pathcorr::SeamProfile;
 use crate::egm::servo::MinMax;
 use crate::egm::types::{EgmMode, ROBOT_AXES};

@@ -27,9 +27,9 @@ use crate::controller::{
     ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, CycleHook,
     RealtimeConfig,
 };
+use crate::egm::latency::{LatencyHistogram, fmt_duration};
 use crate::egm::registry::{ActJoint, RegistryConfig, RunArgs, SetupUc};
 use crate::egm::servo::StopMode;
-use crate::egm::stats::{LatencyHistogram, fmt_duration};
 use crate::egm::{DriverOptions, EgmMode, proto};
 use crate::motion::{Executor, RobotTime, Setpoint};
 use crate::robot::command::{

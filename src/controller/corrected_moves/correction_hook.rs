@@ -8,7 +8,7 @@ use crate::controller::cycle_hook::CycleHook;
 use crate::egm::CorrectionLink;
 use crate::egm::driver::CorrectionInput;
 use crate::egm::event::EgmEvent;
-use crate::egm::log::LogRow;
+use crate::egm::message_log::LogRow;
 use crate::motion::{Executor, RobotTime, Setpoint};
 use crate::output::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::robot::{ToolData, WobjData};

@@ -13,7 +13,7 @@ use std::time::Duration;
 
 use crate::controller::CycleHook;
 use crate::egm::EgmMode;
-use crate::egm::log::LogRow;
+use crate::egm::message_log::LogRow;
 use crate::egm::registry::EgmId;
 use crate::egm::types::RapidExecState;
 use crate::egm::{EgmEvent, EgmStream};

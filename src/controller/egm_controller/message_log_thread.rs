@@ -4,7 +4,7 @@ use std::io::Write;
 use std::sync::mpsc::{self, SyncSender};
 use std::thread::JoinHandle;
 
-use crate::egm::log::EgmLogWriter;
+use crate::egm::message_log::EgmLogWriter;
 
 use super::egm_hook::NamedRow;
 

@@ -14,8 +14,8 @@ use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::event::EgmEvent;
-use crate::egm::guidance::{SignalSource, feedback_in_wobj};
-use crate::egm::log::{LogKind, LogRing, LogRow};
+use crate::egm::geometry::{SignalSource, feedback_in_wobj};
+use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::pathcorr::{SeamProfile, Tracker};
 use crate::egm::registry::{MovePlan, TrackerKind};
 use crate::egm::session::{EgmSession, EgmStats, SourceFilter};

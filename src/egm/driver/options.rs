@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::convert::EncodeOptions;
-use crate::egm::log::DEFAULT_LOG_CAPACITY;
+use crate::egm::message_log::DEFAULT_LOG_CAPACITY;
 use crate::egm::servo::{DEFAULT_SERVO_DELAY, MAX_SERVO_DELAY, MIN_PERIOD};
 use crate::egm::session::{DropTally, QueuePolicy, SourceFilter};
 use crate::robot::Robot;

@@ -4,7 +4,7 @@ use std::net::SocketAddr;
 use std::time::Duration;
 
 use crate::config::moc::ExtMotionProfile;
-use crate::egm::guidance::{Convergence, PoseSetup, SignalSource};
+use crate::egm::geometry::{Convergence, PoseSetup, SignalSource};
 use crate::egm::pathcorr::SeamProfile;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::{MinMax, ServoParams, StopMode};

@@ -11,7 +11,7 @@
 
 use super::{Ctx, NativeFn, Registry};
 use crate::egm::EgmError;
-use crate::egm::guidance::EgmFrameType;
+use crate::egm::geometry::EgmFrameType;
 use crate::egm::registry::{
     ActCommon, ActJoint, ActMove, ActPose, RunArgs, SetupLtapp, SetupSignals, SetupUc, TrackerKind,
     frame_type_from_value, stop_mode_from_value,

@@ -3,13 +3,13 @@
 use nalgebra::{Translation3, UnitQuaternion, Vector3};
 
 use super::convergence::pose_error;
-use super::speed::{SpeedRef, joint_speed_ref};
+use super::speed_refs::{SpeedRef, joint_speed_ref};
 use super::{DIRECTIONS, EgmFrameType, GuidanceError};
 use crate::robot::units::{pose_is_finite, quat_from_euler_zyx_deg, quat_to_euler_zyx_deg};
 use crate::robot::{JointsDeg, Pose, Robot, ToolData, WobjData, flange_target};
 
 /// The frame a frame type refers to, in world coordinates (see the module docs of
-/// `egm::guidance`): WORLD → identity, BASE → the robot base, WOBJ → user frame · object frame
+/// `egm::geometry`): WORLD → identity, BASE → the robot base, WOBJ → user frame · object frame
 /// of `wobj` (for a robot-held work object: `flange_at_start` · that, frozen like TOOL), TOOL →
 /// `flange_at_start`, the tool0 pose when the EGM movement started.
 ///

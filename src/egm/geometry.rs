@@ -44,16 +44,10 @@
     clippy::panic
 )]
 
-// The explicit paths keep the children in `guidance/` both while this file is mounted with
-// `#[path]` from lib.rs and after it moves under `egm` (where they are redundant).
-
 mod convergence;
-
-mod frames;
-
-mod signals;
-
-mod speed;
+mod pose_frames;
+mod signal_sources;
+mod speed_refs;
 
 use std::fmt;
 
@@ -61,9 +55,9 @@ use crate::robot::KinError;
 use crate::signals::{IoError, SignalKind};
 
 pub use convergence::{Convergence, pose_error};
-pub use frames::{FeedbackMode, PoseGuidance, PoseSetup, base_of, feedback_in_wobj};
-pub use signals::SignalSource;
-pub use speed::{SpeedRef, SpeedRefLimit, tcp_jacobian};
+pub use pose_frames::{FeedbackMode, PoseGuidance, PoseSetup, base_of, feedback_in_wobj};
+pub use signal_sources::SignalSource;
+pub use speed_refs::{SpeedRef, SpeedRefLimit, tcp_jacobian};
 
 /// Number of Cartesian directions (x, y, z, rx, ry, rz) and of robot axes.
 pub const DIRECTIONS: usize = 6;
