@@ -17,13 +17,13 @@ use rapidvc::egm::latency::LatencyHistogram;
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
-use rapidvc::egm::transport::UdpTransport;
 use rapidvc::egm::{
     DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,
     EgmSource, ExternalAxes, Joints, Pose, RapidData, RegistryConfig, RobotFeedback,
 };
 use rapidvc::robot::Robot;
 use rapidvc::signals::SignalTable;
+use rapidvc::wire::udp::UdpTransport;
 
 fn feedback() -> RobotFeedback {
     let pose = Pose {

@@ -1,4 +1,4 @@
-//! Externally Guided Motion (EGM): the ABB wire protocol (protobuf over UDP), sans-IO session, transport, built-in sensor, servo law, and the controller-side machinery (identities, per-tick runs, streams, path-correction links, message log).
+//! Externally Guided Motion (EGM): the ABB wire protocol (protobuf over UDP), sans-IO session, built-in sensor, servo law, and the controller-side machinery (identities, per-tick runs, streams, path-correction links, message log).
 //!
 //! Layers, each in its own file:
 //! * [`proto`]: prost types generated from `proto/egm.proto` (ABB's names, V1.1 + RW7 fields).
@@ -6,7 +6,8 @@
 //! * [`convert`]: proto ↔ domain, with every validation rule of a receiving controller.
 //! * [`session`]: the controller side as a sans-IO state machine (`handle_datagram`,
 //!   `poll_transmit`, `poll_timeout`), in the style of quinn-proto.
-//! * [`transport`]: a thin `std::net::UdpSocket` shell that makes no protocol decisions.
+//! * the UDP transport beneath the session is [`crate::wire::udp`]: a thin `std::net::UdpSocket`
+//!   shell that makes no protocol decisions.
 //! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
 //! * [`servo`]: the EGM control law the motion core calls each tick.
 //! * [`geometry`], [`pathcorr`]: pure pose-mode geometry and path-correction math.
@@ -40,7 +41,6 @@ pub mod registry;
 pub mod sensor;
 pub mod servo;
 pub mod session;
-pub mod transport;
 pub mod types;
 
 pub use driver::{

@@ -29,3 +29,4 @@ pub mod robot;
 pub mod sema;
 pub mod signals;
 pub mod source;
+pub mod wire;

@@ -10,8 +10,8 @@ use crate::egm::pathcorr::SeamProfile;
 use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};
-use crate::egm::transport::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 use crate::signals::SignalKind;
+use crate::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 
 use super::EventQueue;
 

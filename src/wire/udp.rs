@@ -1,4 +1,4 @@
-//! Thin UDP shell for one EGM device: one socket, sends only to the configured remote, drains replies without blocking.
+//! Thin UDP transport for one EGM device: one socket, sends only to the configured remote, drains replies without blocking.
 //!
 //! It makes no protocol decisions: it does not decode, filter or time anything. The socket is
 //! non-blocking; [`UdpTransport::drain`] reads every waiting datagram (bounded per call, so a
