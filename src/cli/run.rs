@@ -17,8 +17,8 @@ use super::files::{self, Role};
 use super::robots::RobotArg;
 use super::{interrupt, num, program, progress_line, render};
 
-pub mod egm;
-pub mod view;
+pub mod egm_options;
+pub mod view_options;
 use crate::controller::egm_controller::EgmController;
 use crate::controller::{
     ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, CycleHook,
@@ -80,10 +80,10 @@ pub struct RunArgs {
     pub period: f64,
     /// EGM: devices, message log, lockstep.
     #[command(flatten)]
-    pub egm: egm::EgmArgs,
+    pub egm: egm_options::EgmArgs,
     /// 3D view: replay page, live view.
     #[command(flatten)]
-    pub view: view::ViewArgs,
+    pub view: view_options::ViewArgs,
 }
 
 /// The durations the numeric options give a run (the value parsers bound the options, so
@@ -166,7 +166,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
-    let uses_egm = egm::uses_egm(&prog, &sources);
+    let uses_egm = egm_options::uses_egm(&prog, &sources);
     let view = match start_view(&args, &prog, &sources) {
         Ok(v) => v,
         Err(msg) => {
@@ -189,7 +189,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let tee = view.as_ref().map(view::ViewRun::session);
+    let tee = view.as_ref().map(view_options::ViewRun::session);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -257,7 +257,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             }
         }
         if let Some(e) = egm_controller
-            && let Err(msg) = egm::finish(e, &args.egm, egm_log_written)
+            && let Err(msg) = egm_options::finish(e, &args.egm, egm_log_written)
         {
             eprintln!("error: {msg}");
             code = ExitCode::from(2);
@@ -266,7 +266,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let ended = if was_interrupted {
         "program stopped by Ctrl-C"
     } else {
-        view::ended_text(&code, drain)
+        view_options::ended_text(&code, drain)
     };
     if let Some(v) = view
         && let Err(msg) = v.finish(ended)
@@ -296,7 +296,7 @@ struct Prepared {
     /// The `--pers` file as it was, when it exists.
     pers: Option<StoredPers>,
     /// The EGM devices the program sets up.
-    devices: egm::DeviceUse,
+    devices: egm_options::DeviceUse,
 }
 
 /// A `--pers` file read at the start.
@@ -323,8 +323,8 @@ fn before_the_run(args: &RunArgs, prog: &crate::ir::Program) -> Result<Prepared,
         Some(path) => read_pers(path)?,
         None => None,
     };
-    let devices = egm::device_use(prog);
-    for w in egm::check_devices(&args.egm, &devices)? {
+    let devices = egm_options::device_use(prog);
+    for w in egm_options::check_devices(&args.egm, &devices)? {
         eprintln!("warning: {w}");
     }
     Ok(Prepared { pers, devices })
@@ -452,7 +452,7 @@ fn start_view(
     args: &RunArgs,
     prog: &crate::ir::Program,
     sources: &Arc<SourceMap>,
-) -> Result<Option<view::ViewRun>, String> {
+) -> Result<Option<view_options::ViewRun>, String> {
     let mut files = Vec::new();
     for m in prog.modules.iter().filter(|m| !m.stdlib) {
         if !files.contains(&m.source) {
@@ -474,8 +474,8 @@ fn start_controller(
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
     signals: &Arc<crate::signals::SignalTable>,
-    egm_devices: Option<&egm::DeviceUse>,
-    view: Option<&view::ViewRun>,
+    egm_devices: Option<&egm_options::DeviceUse>,
+    view: Option<&view_options::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
     let uses_egm = egm_devices.is_some();
     if args.egm.egm_log.is_some() && !uses_egm {
