@@ -10,7 +10,7 @@
 //!   shell that makes no protocol decisions.
 //! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
 //! * [`servo`]: the EGM control law the motion core calls each tick.
-//! * [`geometry`], [`pathcorr`]: pure pose-mode geometry and path-correction math.
+//! * [`geometry`], [`path_correction`]: pure pose-mode geometry and path-correction math.
 //! * [`registry`]: the EGM identities of a task and their state machine — what every EGM
 //!   instruction checks and changes; it hands out plans with every default applied.
 //! * [`driver`]: one EGMRunJoint/EGMRunPose per tick ([`EgmDriver`]), position streams
@@ -34,7 +34,7 @@ pub mod event;
 pub mod geometry;
 pub mod latency;
 pub mod message_log;
-pub mod pathcorr;
+pub mod path_correction;
 mod presence;
 pub mod proto;
 pub mod registry;

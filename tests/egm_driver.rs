@@ -829,7 +829,7 @@ fn mode_mismatch_and_the_fifth_identity() {
 mod path_correction {
     use super::*;
     use rapidvc::egm::driver::{CorrectionInput, CorrectionLink};
-    use rapidvc::egm::pathcorr::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
+    use rapidvc::egm::path_correction::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
     use rapidvc::egm::registry::{ActMove, SetupLtapp, TrackerKind};
     use rapidvc::robot::WobjData;
 

@@ -25,7 +25,7 @@
 //!   checks that a RAPID move ran since the controller started and that the robot stands in
 //!   a fine point ("EGM Path correction has to start and end in a fine point"), opens the
 //!   data source and hands a `SeamCorrection` (the motion core's `PathCorrection`, with the
-//!   `PathCorrector` of `egm::pathcorr`) and a [`crate::egm::CorrectionLink`] to the hook.
+//!   `PathCorrector` of `egm::path_correction`) and a [`crate::egm::CorrectionLink`] to the hook.
 //! * Every corrected move is announced to the hook before it is queued as a plain `MoveL` /
 //!   `MoveC`: the planner plans it uncorrected, the executor adds the smoothed correction in
 //!   the path frame each cycle (`motion::correction`) and the trace names it `EGMMoveL`.
@@ -54,7 +54,7 @@ use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
 
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::event::EgmEvent;
-use crate::egm::pathcorr::{PathCorrConfig, Tracker};
+use crate::egm::path_correction::{PathCorrConfig, Tracker};
 use crate::egm::registry::TrackerKind;
 use crate::egm::{CorrectionLink, DriverContext, EgmError, EgmId, EgmRegistry, EgmSource};
 use crate::output::Feed;

@@ -44,7 +44,7 @@ use crate::config::devices::{DeviceTable, DeviceTarget};
 use crate::config::moc::{ExtMotionProfile, MocConfig, MotionLevel};
 use crate::config::sio::device_key;
 use crate::egm::geometry::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::servo::MinMax;
 use crate::egm::types::{EgmMode, ROBOT_AXES};
 use crate::robot::Pose;

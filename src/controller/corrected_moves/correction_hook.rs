@@ -14,7 +14,7 @@ use crate::output::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::robot::{ToolData, WobjData};
 
 use super::seam_correction::{SeamCorrection, rejection_kind};
-use crate::egm::pathcorr::Rejection;
+use crate::egm::path_correction::Rejection;
 
 /// Rejected corrections are reported at most this often.
 pub const REJECTION_REPEAT: Duration = Duration::from_secs(1);
@@ -213,8 +213,8 @@ impl CycleHook for PathCorrHook {
         let applied = seam.applied();
         let fresh = applied.filter(|a| a.time == sp.time);
         let look_ahead = match seam.sensing() {
-            crate::egm::pathcorr::Tracker::Latr { look_ahead } => look_ahead,
-            crate::egm::pathcorr::Tracker::Aptr => 0.0,
+            crate::egm::path_correction::Tracker::Latr { look_ahead } => look_ahead,
+            crate::egm::path_correction::Tracker::Aptr => 0.0,
         };
         // Borrowed, not cloned: nothing here allocates per cycle.
         let (default_tool, default_wobj) = (ToolData::tool0(), WobjData::wobj0());

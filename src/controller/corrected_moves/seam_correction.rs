@@ -1,4 +1,4 @@
-//! The motion core's side of one corrected sequence: [`SeamCorrection`] implements `motion::PathCorrection` with the path frame and the `PathCorrector` of `egm::pathcorr`, and remembers what it applied for the feed and the sensor link.
+//! The motion core's side of one corrected sequence: [`SeamCorrection`] implements `motion::PathCorrection` with the path frame and the `PathCorrector` of `egm::path_correction`, and remembers what it applied for the feed and the sensor link.
 
 use std::collections::VecDeque;
 
@@ -6,7 +6,7 @@ use nalgebra::Vector3;
 
 use crate::egm::EgmError;
 use crate::egm::event::EventKind;
-use crate::egm::pathcorr::{
+use crate::egm::path_correction::{
     PathCorrConfig, PathCorrConfigError, PathCorrector, PathFrame, PathOffset, Rejection,
     Scheduled, Tracker, look_ahead_distance,
 };

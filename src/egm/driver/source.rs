@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use crate::egm::EgmError;
 use crate::egm::event::{EgmEvent, EventKind};
 use crate::egm::geometry::SignalSource;
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use crate::config::moc::ExtMotionProfile;
 use crate::egm::geometry::{Convergence, PoseSetup, SignalSource};
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::{MinMax, ServoParams, StopMode};
 use crate::egm::types::{EgmMode, ROBOT_AXES};
