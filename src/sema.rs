@@ -14,6 +14,7 @@ mod expr;
 mod limits;
 mod order;
 mod predef;
+mod resolve;
 mod stmt;
 
 use std::collections::HashMap;
