@@ -9,10 +9,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::{Arc, Mutex};
 
-use super::{program, render};
+use super::render;
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
 use crate::ir::RoutineKind;
-use crate::load;
+use crate::program::{self, files};
 use crate::signals::SignalTable;
 
 /// Arguments of `rapidvc test`.
@@ -32,7 +32,7 @@ pub struct TestArgs {
 
 /// Run the tests.
 pub fn run(args: TestArgs) -> ExitCode {
-    let files = match load::find_rapid_files(&args.paths) {
+    let files = match files::find_rapid_files(&args.paths) {
         Ok(f) => f,
         Err(e) => {
             eprintln!("error: {e}");

@@ -332,8 +332,7 @@ mod rapid {
         let id = sources.add("t.mod", text);
         let file = crate::parse::parse_file(id, text, &mut diags);
         let registry = Registry::standard();
-        let prog =
-            crate::cli::program::check(&[file], &mut sources, &signals, &registry, &mut diags);
+        let prog = crate::program::check(&[file], &mut sources, &signals, &registry, &mut diags);
         assert!(!diags.has_errors(), "{diags:?}");
         let mut it = Interp::new(Arc::new(prog.unwrap()), &registry, Box::new(host));
         let r = it.run("main").map(drop).map_err(|e| e.message.clone());

@@ -2,6 +2,8 @@
 //! configuration directory gives the I/O signals, and the semantic pass checks everything
 //! and lowers it to IR. Shared by `run`, `test` and `check`.
 
+pub mod files;
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -10,7 +12,6 @@ use crate::config;
 use crate::diag::Diagnostics;
 use crate::interp::{Registry, stdlib};
 use crate::ir::Program;
-use crate::load;
 use crate::parse;
 use crate::sema;
 use crate::signals::SignalTable;
@@ -208,10 +209,10 @@ pub fn load(paths: &[PathBuf], config: Option<&Path>) -> Loaded {
     let registry = Registry::standard();
     let mut io_failed = false;
     let mut user = Vec::new();
-    match load::find_rapid_files(paths) {
+    match files::find_rapid_files(paths) {
         Ok(files) => {
             for path in &files {
-                match load::load_file(&mut sources, path) {
+                match files::load_file(&mut sources, path) {
                     Ok(id) => {
                         let file = parse::parse_file(id, &sources.get(id).text, &mut diags);
                         parse::check_structure(&file, &mut diags);
