@@ -5,7 +5,7 @@
 //! implements [`Host`]. [`VirtualHost`] is a pure counter: `WaitTime 10` advances its clock by
 //! ten seconds at once, so runs are deterministic and take no wall time. It has no robot: its
 //! motion methods keep their defaults, which fail with "this controller has no robot".
-//! `controller::host::ControllerHost` is the host with the virtual robot behind it.
+//! `controller::program_host::ControllerHost` is the host with the virtual robot behind it.
 //!
 //! # Motion
 //!
