@@ -5,7 +5,7 @@
 //! a configuration (`EIO.cfg`, with `SIO.cfg` devices and `MOC.cfg` profiles beside it):
 //!
 //! * [`load`]: files and directories, with the configuration directory next to them (what
-//!   `rapidvc run` and `rapidvc test` do); finding and decoding the files is [`files`].
+//!   `rapidvc run` and `rapidvc test` do); finding and decoding the files is [`rapid_files`].
 //! * [`load_texts`]: modules given as `(name, text)` pairs and a [`config::Config`] — for a
 //!   caller that holds source text rather than files (a service receiving modules, a test, a
 //!   benchmark). A controller with several tasks loads each task's modules with one call.
@@ -16,7 +16,7 @@
 //! Problems are collected in [`Loaded::diags`], never returned early: a program is produced
 //! only when there is no error (warnings are allowed).
 
-pub mod files;
+pub mod rapid_files;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -254,10 +254,10 @@ pub fn load(paths: &[PathBuf], config: Option<&Path>) -> Loaded {
     let mut diags = Diagnostics::new();
     let mut io_failed = false;
     let mut user = Vec::new();
-    match files::find_rapid_files(paths) {
+    match rapid_files::find_rapid_files(paths) {
         Ok(files) => {
             for path in &files {
-                match files::load_file(&mut sources, path) {
+                match rapid_files::load_file(&mut sources, path) {
                     Ok(id) => user.push(parse_source(&sources, id, &mut diags)),
                     Err(e) => {
                         diags.push(LoadProblem::Io {

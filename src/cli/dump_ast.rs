@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use crate::diag::Diagnostics;
 use crate::parse;
-use crate::program::files;
+use crate::program::rapid_files;
 use crate::source::SourceMap;
 
 /// Arguments of `rapidvc dump-ast`.
@@ -18,7 +18,7 @@ pub struct DumpAstArgs {
 /// Print the dump on stdout and the diagnostics on stderr; exit 1 when there are errors.
 pub fn run(args: DumpAstArgs) -> ExitCode {
     let mut map = SourceMap::new();
-    let id = match files::load_file(&mut map, &args.file) {
+    let id = match rapid_files::load_file(&mut map, &args.file) {
         Ok(id) => id,
         Err(e) => {
             eprintln!("error: {e}");

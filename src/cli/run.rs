@@ -357,7 +357,7 @@ fn entry_candidates(prog: &crate::ir::Program) -> String {
 
 /// The run's outputs can be written, and none is an input of the run or another output.
 fn check_paths(args: &RunArgs) -> Result<(), String> {
-    let programs = program::files::find_rapid_files(&args.files).unwrap_or_default();
+    let programs = program::rapid_files::find_rapid_files(&args.files).unwrap_or_default();
     let config_files: Vec<PathBuf> = program::config_dir(args.config.as_deref(), &args.files)
         .map(|dir| {
             ["EIO.cfg", "SIO.cfg", "MOC.cfg"]

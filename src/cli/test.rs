@@ -12,7 +12,7 @@ use std::sync::{Arc, Mutex};
 use super::render;
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
 use crate::ir::RoutineKind;
-use crate::program::{self, files};
+use crate::program::{self, rapid_files};
 use crate::signals::SignalTable;
 
 /// Arguments of `rapidvc test`.
@@ -32,7 +32,7 @@ pub struct TestArgs {
 
 /// Run the tests.
 pub fn run(args: TestArgs) -> ExitCode {
-    let files = match files::find_rapid_files(&args.paths) {
+    let files = match rapid_files::find_rapid_files(&args.paths) {
         Ok(f) => f,
         Err(e) => {
             eprintln!("error: {e}");
