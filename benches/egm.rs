@@ -13,17 +13,17 @@ use std::time::{Duration, Instant};
 use criterion::Criterion;
 use prost::Message;
 use rapidvc::egm::convert::{EncodeOptions, ReferenceLimits, decode_reference, fill_robot};
+use rapidvc::egm::latency::LatencyHistogram;
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
-use rapidvc::egm::stats::LatencyHistogram;
-use rapidvc::egm::transport::UdpTransport;
 use rapidvc::egm::{
     DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,
     EgmSource, ExternalAxes, Joints, Pose, RapidData, RegistryConfig, RobotFeedback,
 };
-use rapidvc::io::SignalTable;
 use rapidvc::robot::Robot;
+use rapidvc::signals::SignalTable;
+use rapidvc::wire::udp::UdpTransport;
 
 fn feedback() -> RobotFeedback {
     let pose = Pose {
@@ -253,7 +253,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
         let setup = SetupSignals {
             mecunit: "ROB_1".into(),
             profile: "default".into(),
-            kind: rapidvc::io::SignalKind::Ao,
+            kind: rapidvc::signals::SignalKind::Ao,
             mode,
             tracker: None,
             mapping: [

@@ -10,8 +10,8 @@ use std::process::Command;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use rapidvc::cli::program;
 use rapidvc::interp::{Interp, Output, VirtualHost};
+use rapidvc::program;
 
 fn bench_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("benches")

@@ -11,7 +11,6 @@ mod dump_ast;
 mod files;
 mod interrupt;
 pub mod num;
-pub mod program;
 mod progress_line;
 mod render;
 pub mod robots;

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 pub use error::ConfigError;
 
 use crate::diag::Diagnostics;
-use crate::io::{IoError, SignalDef, SignalTable, builtin_signals, merge_defs};
+use crate::signals::{IoError, SignalDef, SignalTable, builtin_signals, merge_defs};
 use crate::source::{SourceMap, decode_bytes};
 
 /// Everything read from a configuration directory.

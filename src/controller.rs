@@ -8,19 +8,19 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 pub mod condition;
-pub mod egm;
+pub mod corrected_moves;
+pub mod cycle_hook;
+pub mod egm_controller;
 pub mod handle;
-pub mod hook;
-pub mod host;
-pub mod monotonic;
-pub mod pathcorr;
+pub mod monotonic_clock;
+mod motion_thread;
+pub mod period_stats;
 pub mod priority;
-mod realtime;
-mod rt;
-pub mod sink;
-pub mod stats;
+pub mod program_host;
+mod realtime_driver;
 pub mod summary;
-mod virtual_time;
+pub mod tick_sink;
+mod virtual_driver;
 
 use std::time::Duration;
 
@@ -28,14 +28,14 @@ use crate::motion::{CoreConfig, MotionError, MotionEvent};
 use crate::robot::{JointsDeg, Robot};
 
 pub use condition::Condition;
+pub use cycle_hook::CycleHook;
 pub use handle::ControllerHandle;
-pub use hook::CycleHook;
-pub use host::ControllerHost;
-pub use monotonic::MonotonicClock;
+pub use monotonic_clock::MonotonicClock;
+pub use period_stats::PeriodStats;
 pub use priority::RealtimeConfig;
-pub use sink::TickSink;
-pub use stats::PeriodStats;
+pub use program_host::ControllerHost;
 pub use summary::RunSummary;
+pub use tick_sink::TickSink;
 
 /// How robot time runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,4 +1,4 @@
-//! Externally Guided Motion (EGM): the ABB wire protocol (protobuf over UDP), sans-IO session, transport, built-in sensor, servo law, and the controller-side machinery (identities, per-tick runs, streams, path-correction links, message log).
+//! Externally Guided Motion (EGM): the ABB wire protocol (protobuf over UDP), sans-IO session, built-in sensor, servo law, and the controller-side machinery (identities, per-tick runs, streams, path-correction links, message log).
 //!
 //! Layers, each in its own file:
 //! * [`proto`]: prost types generated from `proto/egm.proto` (ABB's names, V1.1 + RW7 fields).
@@ -6,17 +6,18 @@
 //! * [`convert`]: proto ↔ domain, with every validation rule of a receiving controller.
 //! * [`session`]: the controller side as a sans-IO state machine (`handle_datagram`,
 //!   `poll_transmit`, `poll_timeout`), in the style of quinn-proto.
-//! * [`transport`]: a thin `std::net::UdpSocket` shell that makes no protocol decisions.
+//! * the UDP transport beneath the session is [`crate::wire::udp`]: a thin `std::net::UdpSocket`
+//!   shell that makes no protocol decisions.
 //! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
 //! * [`servo`]: the EGM control law the motion core calls each tick.
-//! * [`guidance`], [`pathcorr`]: pure pose-mode geometry and path-correction math.
+//! * [`geometry`], [`path_correction`]: pure pose-mode geometry and path-correction math.
 //! * [`registry`]: the EGM identities of a task and their state machine — what every EGM
 //!   instruction checks and changes; it hands out plans with every default applied.
 //! * [`driver`]: one EGMRunJoint/EGMRunPose per tick ([`EgmDriver`]), position streams
 //!   ([`EgmStream`]) and the message side of path correction ([`CorrectionLink`]) over UdpUc,
 //!   the in-process built-in sensor or I/O signals.
-//! * [`log`]: the `--egm-log` rows and their CSV writer.
-//! * [`event`], [`stats`]: event-log entries and latency statistics.
+//! * [`message_log`]: the `--egm-log` rows and their CSV writer.
+//! * [`event`], [`latency`]: event-log entries and latency statistics.
 //!
 //! Nothing here may panic on input from the network: the lint wall below forbids `unwrap`,
 //! `expect` and panicking indexing outside tests.
@@ -30,17 +31,16 @@
 pub mod convert;
 pub mod driver;
 pub mod event;
-pub mod guidance;
-pub mod log;
-pub mod pathcorr;
+pub mod geometry;
+pub mod latency;
+pub mod message_log;
+pub mod path_correction;
 mod presence;
 pub mod proto;
 pub mod registry;
 pub mod sensor;
 pub mod servo;
 pub mod session;
-pub mod stats;
-pub mod transport;
 pub mod types;
 
 pub use driver::{

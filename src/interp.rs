@@ -500,7 +500,7 @@ impl Interp {
     }
 
     /// A runtime-library failure as the RAPID error it names.
-    fn rt_error(&self, e: crate::rtlib::RtError, span: Span) -> Unwind {
+    fn rt_error(&self, e: crate::functions::RtError, span: Span) -> Unwind {
         match errnum::by_name(e.err_name()) {
             Some(d) => self.error(d.num, span, e.to_string()),
             None => self.fatal(ErrorKind::Host, span, e.to_string()),

@@ -3,11 +3,13 @@
 //! It parses and runs RAPID programs against a kinematic virtual 6-axis robot and implements
 //! ABB's Externally Guided Motion (EGM) over the real wire protocol (protobuf over UDP).
 //!
-//! Phases and layers (see `docs/architecture.md`):
-//! `source` → `parse` (pest, AST with spans) → `sema` (names, types, IR) → `interp`
-//! (tree-walking evaluation) → `controller` (composition root, the motion thread) over
-//! `motion` (sans-IO motion core), `robot` (kinematics, pure math) and `egm` (wire protocol).
-//! Only `cli` prints, reads the environment or exits.
+//! Phases and layers (see `docs/architecture.md`, "Modules" and "Layers"): `source` →
+//! `parse` (pest, AST with spans) → `sema` (names, types) → `ir` → `program` (the one way
+//! from source to a checked program) → `interp` (the interpreter) → `controller` (program
+//! execution, the cycle, clocks) over `motion` (sans-IO motion core), `egm` (the EGM protocol
+//! machines) and `wire` (sockets); `signals`, `config` and `output` (traces, plots, the view)
+//! beside them, `robot` (kinematics, pure math) and `functions` (RAPID's predefined
+//! functions) underneath. Only `cli` prints, reads the environment or exits.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -18,15 +20,15 @@ pub mod config;
 pub mod controller;
 pub mod diag;
 pub mod egm;
+pub mod functions;
 pub mod interp;
-pub mod io;
 pub mod ir;
-pub mod load;
 pub mod motion;
+pub mod output;
 pub mod parse;
-pub mod report;
+pub mod program;
 pub mod robot;
-pub mod rtlib;
 pub mod sema;
+pub mod signals;
 pub mod source;
-pub mod view;
+pub mod wire;

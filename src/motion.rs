@@ -3,7 +3,7 @@
 //! `MotionCore::tick(now)` that plays the planned samples under supervision.
 //!
 //! Nothing here sleeps, spawns threads, opens sockets or reads the operating system's clock;
-//! `controller::rt` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
+//! `controller::motion_thread` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
 //!
 //! Design: every move is planned completely when it is queued (the inverse kinematics of every
 //! cycle of a linear move included), so errors surface before the robot moves and the cycle
@@ -16,7 +16,7 @@ pub mod core;
 pub mod correction;
 pub mod event;
 pub mod executor;
-pub mod guidance;
+pub mod external_guidance;
 pub mod limits;
 pub mod planner;
 pub mod profile;
@@ -29,7 +29,7 @@ pub use clock::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
 pub use correction::{PathCorrection, PathPoint};
 pub use event::{InstrRef, MotionError, MotionEvent, PathPlace, Severity};
 pub use executor::Executor;
-pub use guidance::{ExternalGuidance, GuidanceStep};
+pub use external_guidance::{ExternalGuidance, GuidanceStep};
 pub use planner::Planner;
 pub use settings::{AccSet, CoreConfig, MotionSettings, SingArea, VelSet};
 pub use state::{CoreMode, MotionState, Setpoint};

@@ -8,13 +8,13 @@
 //!
 //! This module uses nothing above it (no interp, motion, egm, controller, time or threads).
 
+mod catalog;
 pub mod command;
 pub mod conf;
 pub mod error;
 pub mod frames;
 pub mod kinematics;
 pub mod model;
-mod models;
 pub mod singularity;
 pub mod units;
 

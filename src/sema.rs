@@ -14,6 +14,7 @@ mod expr;
 mod limits;
 mod order;
 mod predef;
+mod resolve;
 mod stmt;
 
 use std::collections::HashMap;
@@ -21,11 +22,11 @@ use std::sync::Arc;
 
 use crate::ast;
 use crate::diag::Diagnostics;
-pub use crate::io::SignalKind;
 use crate::ir::{
     Global, GlobalId, ModuleId, ModuleInfo, NativeId, NativeSig, Program, Routine, RoutineId, Ty,
     TypeTable,
 };
+pub use crate::signals::SignalKind;
 use crate::source::Span;
 pub use error::{SemaError, SemaErrorKind};
 
@@ -40,7 +41,7 @@ pub struct Env {
 
 impl Env {
     /// The signals of a signal table and the default mechanical unit.
-    pub fn from_signals(table: &crate::io::SignalTable) -> Self {
+    pub fn from_signals(table: &crate::signals::SignalTable) -> Self {
         Env {
             signals: table
                 .iter()

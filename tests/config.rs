@@ -5,7 +5,7 @@ use std::path::Path;
 
 use rapidvc::config::{self, ConfigError};
 use rapidvc::diag::Diagnostics;
-use rapidvc::io::SignalKind;
+use rapidvc::signals::SignalKind;
 use rapidvc::source::SourceMap;
 
 /// Load a fixture directory by its relative path (stable file names in the snapshots).

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use prost::Message;
 use rapidvc::config::devices::{DeviceOverride, DeviceTable};
 use rapidvc::config::moc::MocConfig;
-use rapidvc::egm::log::{EgmLogWriter, LOG_COLUMNS, LogRow};
+use rapidvc::egm::message_log::{EgmLogWriter, LOG_COLUMNS, LogRow};
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::proto::egm_mci_state::MciStateType;
 use rapidvc::egm::registry::{ActJoint, ActPose, RunArgs, SetupSignals, SetupUc, StopTarget};
@@ -22,9 +22,9 @@ use rapidvc::egm::{
     CorrState, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmMode,
     EgmRegistry, EgmSource, EgmState, EgmStream, EgmTick, Joints, RapidExecState, RegistryConfig,
 };
-use rapidvc::io::{SignalKind, SignalTable};
 use rapidvc::robot::units::pose_from_pos_quat;
 use rapidvc::robot::{ConfData, LoadData, Robot, ToolData};
+use rapidvc::signals::{SignalKind, SignalTable};
 
 const TICK: Duration = Duration::from_millis(4);
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
@@ -355,7 +355,7 @@ mod builtin {
         act.common.tool = Some(tool);
         act.corr_frame = pose_from_pos_quat([1200.0, 400.0, 900.0], [1.0, 0.0, 0.0, 0.0]);
         act.sensor_frame = tool.tframe;
-        act.sens_type = rapidvc::egm::guidance::EgmFrameType::Tool;
+        act.sens_type = rapidvc::egm::geometry::EgmFrameType::Tool;
         reg.act_pose(id, &act).unwrap();
         let args = RunArgs {
             cond_time: Some(0.5),
@@ -829,7 +829,7 @@ fn mode_mismatch_and_the_fifth_identity() {
 mod path_correction {
     use super::*;
     use rapidvc::egm::driver::{CorrectionInput, CorrectionLink};
-    use rapidvc::egm::pathcorr::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
+    use rapidvc::egm::path_correction::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
     use rapidvc::egm::registry::{ActMove, SetupLtapp, TrackerKind};
     use rapidvc::robot::WobjData;
 

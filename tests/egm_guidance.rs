@@ -6,19 +6,18 @@
 // Expected values are quoted digit for digit from docs/robot.md and the manual.
 #![allow(clippy::approx_constant)]
 
-// The one line to change when the module moves under `egm` (`rapidvc::egm::guidance`).
-use rapidvc::egm::guidance;
+use rapidvc::egm::geometry as guidance;
 
 use guidance::{
     Convergence, EgmFrameType, FeedbackMode, GuidanceError, PoseGuidance, PoseSetup, SignalSource,
     SpeedRefLimit, tcp_jacobian,
 };
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
-use rapidvc::io::{SignalKind, SignalTable};
 use rapidvc::robot::units::{pose_from_pos_quat, pose_to_pos_quat};
 use rapidvc::robot::{
     ConfData, JointsDeg, KinError, LoadData, Pose, Robot, SingularityKind, ToolData, WobjData,
 };
+use rapidvc::signals::{SignalKind, SignalTable};
 
 /// Joint tolerance of docs/robot.md, "Acceptance facts".
 const JOINT_TOL: f64 = 0.01;

@@ -783,7 +783,7 @@ mod controller {
         TickSink,
     };
     use rapidvc::motion::{RobotTime, Setpoint};
-    use rapidvc::report::{TRACE_HEADER, TraceWriter};
+    use rapidvc::output::{TRACE_HEADER, TraceWriter};
     use rapidvc::robot::command::MotionCommand;
     use rapidvc::robot::{Robot, ToolData, pose_to_pos_quat};
 
@@ -992,7 +992,7 @@ mod controller {
 mod plots {
     use super::*;
     use rapidvc::controller::{Condition, ControllerConfig, ControllerHandle};
-    use rapidvc::report::PlotRecorder;
+    use rapidvc::output::PlotRecorder;
     use rapidvc::robot::{Robot, ToolData, pose_to_pos_quat};
 
     const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];

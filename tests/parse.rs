@@ -36,7 +36,7 @@ fn on_small_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> 
 /// Load `path` like the CLI does (UTF-8, else Latin-1), parse and check it.
 fn check_path(path: &Path) -> (rapidvc::ast::File, Diagnostics, SourceMap) {
     let mut map = SourceMap::new();
-    let id = rapidvc::load::load_file(&mut map, path).expect("readable test input");
+    let id = rapidvc::program::rapid_files::load_file(&mut map, path).expect("readable test input");
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -94,7 +94,8 @@ mod golden {
 #[test]
 fn programs_check_clean() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("programs");
-    let files = rapidvc::load::find_rapid_files(&[root]).expect("programs/ holds RAPID files");
+    let files = rapidvc::program::rapid_files::find_rapid_files(&[root])
+        .expect("programs/ holds RAPID files");
     assert!(files.len() >= 3);
     for path in files {
         let (file, diags, map) = check_path(&path);
@@ -276,7 +277,7 @@ mod robustness {
 
 fn manual_programs() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("programs/manual");
-    rapidvc::load::find_rapid_files(&[dir]).expect("manual programs")
+    rapidvc::program::rapid_files::find_rapid_files(&[dir]).expect("manual programs")
 }
 
 /// Property tests: the parser never panics, whatever the input.
@@ -435,14 +436,14 @@ fn repository_texts() -> Vec<(String, String)> {
         "tests/run",
         "tests/rapid",
     ];
-    let files = rapidvc::load::find_rapid_files(&dirs.map(|d| root.join(d)))
+    let files = rapidvc::program::rapid_files::find_rapid_files(&dirs.map(|d| root.join(d)))
         .expect("RAPID files in the repository");
     assert!(files.len() > 20);
     files
         .into_iter()
         .map(|path| {
             let mut map = SourceMap::new();
-            let id = rapidvc::load::load_file(&mut map, &path).expect("readable");
+            let id = rapidvc::program::rapid_files::load_file(&mut map, &path).expect("readable");
             (path.display().to_string(), map.get(id).text.to_string())
         })
         .collect()

@@ -25,7 +25,7 @@ mod pipeline {
         ClockMode, Condition, ControllerConfig, ControllerHandle, CycleHook, RealtimeConfig,
     };
     use rapidvc::motion::{Executor, Setpoint};
-    use rapidvc::report::{EgmAxes, EgmTraceState, Feed, TRACE_HEADER, TraceColumns, TraceWriter};
+    use rapidvc::output::{EgmAxes, EgmTraceState, Feed, TRACE_HEADER, TraceColumns, TraceWriter};
     use rapidvc::robot::command::{
         EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
     };
@@ -189,7 +189,7 @@ mod pipeline {
 mod plots {
     use rapidvc::controller::TickSink;
     use rapidvc::motion::{InstrRef, RobotTime, Setpoint};
-    use rapidvc::report::{EgmAxes, EgmTraceState, Feed, PlotRecorder};
+    use rapidvc::output::{EgmAxes, EgmTraceState, Feed, PlotRecorder};
     use rapidvc::robot::Robot;
 
     const DT_NS: u64 = 4_000_000;

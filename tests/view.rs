@@ -10,7 +10,7 @@ mod view_page;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use rapidvc::view::record::{JOINT_TOL_DEG, TCP_TOL_MM};
+use rapidvc::output::view::record::{JOINT_TOL_DEG, TCP_TOL_MM};
 use serde_json::Value;
 use view_page::{Rows, decode, decode_time, page_data, read_trace};
 

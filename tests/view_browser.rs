@@ -22,9 +22,9 @@ use std::time::{Duration, Instant};
 use headless_chrome::protocol::cdp::Page::CaptureScreenshotFormatOption;
 use headless_chrome::protocol::cdp::types::Event;
 use headless_chrome::{Browser, LaunchOptions, Tab};
+use rapidvc::output::view::kinematics::joint_origins;
+use rapidvc::output::view::record::{JOINT_TOL_DEG, TCP_TOL_MM};
 use rapidvc::robot::Robot;
-use rapidvc::view::kinematics::joint_origins;
-use rapidvc::view::record::{JOINT_TOL_DEG, TCP_TOL_MM};
 use serde_json::Value;
 
 const IGNORE: &str = "needs Chromium";

@@ -11,9 +11,9 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use futures_util::StreamExt;
+use rapidvc::output::view::{Scene, ViewSession};
 use rapidvc::robot::Robot;
 use rapidvc::source::SourceMap;
-use rapidvc::view::{Scene, ViewSession};
 use serde_json::Value;
 use tokio_tungstenite::tungstenite::Message;
 
@@ -162,7 +162,10 @@ fn the_router_serves_under_a_prefix_of_another_router() {
         frames: Vec::new(),
     });
     session.enable_live();
-    let app = axum::Router::new().nest("/view", rapidvc::view::live::router(session.clone()));
+    let app = axum::Router::new().nest(
+        "/view",
+        rapidvc::output::view::live::router(session.clone()),
+    );
     let rt = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()

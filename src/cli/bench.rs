@@ -1,5 +1,5 @@
 //! `rapidvc bench virtual|realtime|egm`: measure the motion core (and EGM: see
-//! [`egm`]). `virtual` runs minutes of mixed
+//! `cli/bench/egm.rs`). `virtual` runs minutes of mixed
 //! MoveJ/MoveL in virtual time and reports the real-time factor (simulated seconds per wall
 //! second); `realtime` runs the motion thread at its fixed period while busy-loop processes
 //! load every core, and prints the distribution of the cycle-period error.
@@ -14,7 +14,7 @@ use crate::controller::{
     RealtimeConfig, TickSink,
 };
 use crate::motion::RobotTime;
-use crate::report::TraceWriter;
+use crate::output::TraceWriter;
 use crate::robot::command::{
     EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };

@@ -9,8 +9,8 @@ use miette::{GraphicalReportHandler, GraphicalTheme};
 
 use crate::ast;
 use crate::diag::Diagnostics;
-use crate::load;
 use crate::parse;
+use crate::program::{self, rapid_files};
 use crate::source::{SourceId, SourceMap};
 
 /// Arguments of `rapidvc check`.
@@ -49,7 +49,7 @@ enum Depth {
 
 /// Run the check.
 pub fn run(args: CheckArgs) -> ExitCode {
-    let files = match load::find_rapid_files(&args.paths) {
+    let files = match rapid_files::find_rapid_files(&args.paths) {
         Ok(f) => f,
         Err(e) => {
             eprintln!("error: {e}");
@@ -66,7 +66,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
     let mut io_failed = false;
     let mut ids = Vec::with_capacity(files.len());
     for path in &files {
-        match load::load_file(&mut map, path) {
+        match rapid_files::load_file(&mut map, path) {
             Ok(id) => ids.push(id),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -86,7 +86,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
         Depth::Full => {
             if !diags.has_errors() && !io_failed {
                 let registry = crate::interp::Registry::standard();
-                super::program::check_files(&parsed, &args.paths, &mut map, &registry, &mut diags);
+                program::check_files(&parsed, &args.paths, &mut map, &registry, &mut diags);
             }
         }
     }

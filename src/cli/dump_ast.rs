@@ -4,8 +4,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use crate::diag::Diagnostics;
+use crate::parse;
+use crate::program::rapid_files;
 use crate::source::SourceMap;
-use crate::{load, parse};
 
 /// Arguments of `rapidvc dump-ast`.
 #[derive(Debug, clap::Args)]
@@ -17,7 +18,7 @@ pub struct DumpAstArgs {
 /// Print the dump on stdout and the diagnostics on stderr; exit 1 when there are errors.
 pub fn run(args: DumpAstArgs) -> ExitCode {
     let mut map = SourceMap::new();
-    let id = match load::load_file(&mut map, &args.file) {
+    let id = match rapid_files::load_file(&mut map, &args.file) {
         Ok(id) => id,
         Err(e) => {
             eprintln!("error: {e}");

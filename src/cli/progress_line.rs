@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use crate::controller::TickSink;
 use crate::motion::Setpoint;
-use crate::report::{Progress, ProgressSink};
+use crate::output::{Progress, ProgressSink};
 use crate::source::SourceMap;
 
 /// True while a progress line is on the screen.

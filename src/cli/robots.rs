@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::str::FromStr;
 
-use crate::report::num::fixed;
+use crate::output::number_format::fixed;
 use crate::robot::{RobotModel, default_model, model_by_name, models};
 
 /// A robot model chosen on the command line (`--robot "IRB 2600-12/1.85"`, `irb120`, …).

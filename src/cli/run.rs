@@ -15,18 +15,19 @@ use std::time::Duration;
 
 use super::files::{self, Role};
 use super::robots::RobotArg;
-use super::{interrupt, num, program, progress_line, render};
+use super::{interrupt, num, progress_line, render};
+use crate::program;
 
-pub mod egm;
-pub mod view;
-use crate::controller::egm::EgmController;
+pub mod egm_options;
+pub mod view_options;
+use crate::controller::egm_controller::EgmController;
 use crate::controller::{
     ClockMode, ControllerConfig, ControllerError, ControllerHandle, ControllerHost, CycleHook,
     RealtimeConfig, RunSummary, TickSink,
 };
 use crate::interp::{Interp, Outcome, Output, pers};
 use crate::motion::CoreConfig;
-use crate::report::{Feed, PlotRecorder, TraceColumns, TraceWriter};
+use crate::output::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
 use crate::source::SourceMap;
 
@@ -80,10 +81,10 @@ pub struct RunArgs {
     pub period: f64,
     /// EGM: devices, message log, lockstep.
     #[command(flatten)]
-    pub egm: egm::EgmArgs,
+    pub egm: egm_options::EgmArgs,
     /// 3D view: replay page, live view.
     #[command(flatten)]
-    pub view: view::ViewArgs,
+    pub view: view_options::ViewArgs,
 }
 
 /// The durations the numeric options give a run (the value parsers bound the options, so
@@ -166,7 +167,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
-    let uses_egm = egm::uses_egm(&prog, &sources);
+    let uses_egm = egm_options::uses_egm(&prog, &sources);
     let view = match start_view(&args, &prog, &sources) {
         Ok(v) => v,
         Err(msg) => {
@@ -189,7 +190,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let tee = view.as_ref().map(view::ViewRun::session);
+    let tee = view.as_ref().map(view_options::ViewRun::session);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -257,7 +258,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             }
         }
         if let Some(e) = egm_controller
-            && let Err(msg) = egm::finish(e, &args.egm, egm_log_written)
+            && let Err(msg) = egm_options::finish(e, &args.egm, egm_log_written)
         {
             eprintln!("error: {msg}");
             code = ExitCode::from(2);
@@ -266,7 +267,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let ended = if was_interrupted {
         "program stopped by Ctrl-C"
     } else {
-        view::ended_text(&code, drain)
+        view_options::ended_text(&code, drain)
     };
     if let Some(v) = view
         && let Err(msg) = v.finish(ended)
@@ -296,7 +297,7 @@ struct Prepared {
     /// The `--pers` file as it was, when it exists.
     pers: Option<StoredPers>,
     /// The EGM devices the program sets up.
-    devices: egm::DeviceUse,
+    devices: egm_options::DeviceUse,
 }
 
 /// A `--pers` file read at the start.
@@ -323,8 +324,8 @@ fn before_the_run(args: &RunArgs, prog: &crate::ir::Program) -> Result<Prepared,
         Some(path) => read_pers(path)?,
         None => None,
     };
-    let devices = egm::device_use(prog);
-    for w in egm::check_devices(&args.egm, &devices)? {
+    let devices = egm_options::device_use(prog);
+    for w in egm_options::check_devices(&args.egm, &devices)? {
         eprintln!("warning: {w}");
     }
     Ok(Prepared { pers, devices })
@@ -356,7 +357,7 @@ fn entry_candidates(prog: &crate::ir::Program) -> String {
 
 /// The run's outputs can be written, and none is an input of the run or another output.
 fn check_paths(args: &RunArgs) -> Result<(), String> {
-    let programs = crate::load::find_rapid_files(&args.files).unwrap_or_default();
+    let programs = program::rapid_files::find_rapid_files(&args.files).unwrap_or_default();
     let config_files: Vec<PathBuf> = program::config_dir(args.config.as_deref(), &args.files)
         .map(|dir| {
             ["EIO.cfg", "SIO.cfg", "MOC.cfg"]
@@ -452,7 +453,7 @@ fn start_view(
     args: &RunArgs,
     prog: &crate::ir::Program,
     sources: &Arc<SourceMap>,
-) -> Result<Option<view::ViewRun>, String> {
+) -> Result<Option<view_options::ViewRun>, String> {
     let mut files = Vec::new();
     for m in prog.modules.iter().filter(|m| !m.stdlib) {
         if !files.contains(&m.source) {
@@ -465,7 +466,7 @@ fn start_view(
 }
 
 /// The controller of this run: robot, period, start position, clock, trace, plot and view,
-/// and its EGM side (devices, clock choice, report feed, `--egm-log`).
+/// and its EGM side (devices, clock choice, output feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
 /// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
 /// program sets up, `None` when it uses no EGM.
@@ -473,9 +474,9 @@ fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
-    signals: &Arc<crate::io::SignalTable>,
-    egm_devices: Option<&egm::DeviceUse>,
-    view: Option<&view::ViewRun>,
+    signals: &Arc<crate::signals::SignalTable>,
+    egm_devices: Option<&egm_options::DeviceUse>,
+    view: Option<&view_options::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
     let uses_egm = egm_devices.is_some();
     if args.egm.egm_log.is_some() && !uses_egm {

@@ -17,11 +17,11 @@ macro_rules! say {
 }
 use tokio::net::UdpSocket;
 
+use crate::egm::latency::LatencyHistogram;
 use crate::egm::sensor::{
     BuiltinSensor, PathCorrProfile, RobotSnapshot, SensorConfig, SensorPattern, SineAxis,
     parse_axis, parse_profile,
 };
-use crate::egm::stats::LatencyHistogram;
 use crate::egm::types::{EgmMode, MciState, MotorState, RapidExecState};
 
 /// Arguments of `rapidvc sensor`.

@@ -9,11 +9,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::{Arc, Mutex};
 
-use super::{program, render};
+use super::render;
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
-use crate::io::SignalTable;
 use crate::ir::RoutineKind;
-use crate::load;
+use crate::program::{self, rapid_files};
+use crate::signals::SignalTable;
 
 /// Arguments of `rapidvc test`.
 #[derive(Debug, clap::Args)]
@@ -32,7 +32,7 @@ pub struct TestArgs {
 
 /// Run the tests.
 pub fn run(args: TestArgs) -> ExitCode {
-    let files = match load::find_rapid_files(&args.paths) {
+    let files = match rapid_files::find_rapid_files(&args.paths) {
         Ok(f) => f,
         Err(e) => {
             eprintln!("error: {e}");

@@ -21,7 +21,7 @@ use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 
 use crate::diag::Diagnostics;
-use crate::io::{IoError, MAX_GROUP_BITS, SignalDef, SignalKind};
+use crate::signals::{IoError, MAX_GROUP_BITS, SignalDef, SignalKind};
 use crate::source::{SourceId, Span};
 
 use super::ConfigError;

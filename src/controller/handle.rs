@@ -17,13 +17,13 @@ use crate::robot::command::MotionCommand;
 use crate::robot::{Robot, ToolData};
 
 use super::condition::Condition;
-use super::hook::CycleHook;
-use super::monotonic::MonotonicClock;
-use super::realtime::RealTimeDriver;
-use super::rt::Control;
-use super::sink::TickSink;
+use super::cycle_hook::CycleHook;
+use super::monotonic_clock::MonotonicClock;
+use super::motion_thread::Control;
+use super::realtime_driver::RealTimeDriver;
 use super::summary::RunSummary;
-use super::virtual_time::VirtualDriver;
+use super::tick_sink::TickSink;
+use super::virtual_driver::VirtualDriver;
 use super::{ClockMode, ControllerConfig, ControllerError};
 
 enum Driver {
@@ -426,7 +426,7 @@ impl ControllerHandle {
     /// `ok` holds.
     fn settle(
         r: &mut RealTimeDriver,
-        ok: impl Fn(&super::rt::Published) -> bool,
+        ok: impl Fn(&super::motion_thread::Published) -> bool,
     ) -> Result<(), ControllerError> {
         let clock = MonotonicClock::new();
         let mut guard = r.published();

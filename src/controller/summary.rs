@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use crate::robot::JointsDeg;
 
-use super::stats::PeriodStats;
+use super::period_stats::PeriodStats;
 
 /// What a run did, for the one-line summary the CLI prints at the end.
 #[derive(Clone, Debug)]

@@ -70,10 +70,10 @@ use std::time::Duration;
 
 use crate::egm::convert::{ReferenceLimits, euler_zyx_from_quaternion};
 use crate::egm::event::{EgmEvent, EventKind};
-use crate::egm::guidance::{
+use crate::egm::geometry::{
     FeedbackMode, GuidanceError, PoseGuidance, SignalSource, feedback_in_wobj,
 };
-use crate::egm::log::{LogKind, LogRing, LogRow};
+use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::{EgmError, RunPlan};
 use crate::egm::sensor::SensorStats;
 use crate::egm::servo::{
@@ -85,8 +85,8 @@ use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
     RapidExecState, RobotFeedback, SensorReference, Target,
 };
-use crate::io::{SignalId, SignalTable};
 use crate::robot::{Pose, Robot, ToolData, WobjData};
+use crate::signals::{SignalId, SignalTable};
 
 mod corrections;
 mod delay;
@@ -498,7 +498,7 @@ impl EgmDriver {
         self.log.pop()
     }
 
-    /// The log ring (for [`crate::egm::log::EgmLogWriter::drain`]).
+    /// The log ring (for [`crate::egm::message_log::EgmLogWriter::drain`]).
     pub fn log_mut(&mut self) -> &mut LogRing {
         &mut self.log
     }

@@ -43,13 +43,13 @@ use std::time::Duration;
 use crate::config::devices::{DeviceTable, DeviceTarget};
 use crate::config::moc::{ExtMotionProfile, MocConfig, MotionLevel};
 use crate::config::sio::device_key;
-use crate::egm::guidance::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::geometry::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::servo::MinMax;
 use crate::egm::types::{EgmMode, ROBOT_AXES};
-use crate::io::SignalTable;
 use crate::robot::Pose;
 use crate::robot::units::pose_is_finite;
+use crate::signals::SignalTable;
 
 mod activate;
 mod args;

@@ -12,13 +12,13 @@ use std::time::Duration;
 use prost::Message;
 
 use super::convert::{clock_to_duration, header_tm};
+use super::latency::LatencyHistogram;
 use super::proto::{
     EgmCartesian, EgmCartesianSpeed, EgmHeader, EgmJoints, EgmPathCorr, EgmPlanned, EgmPose,
     EgmQuaternion, EgmRobot, EgmSensor, EgmSensorPathCorr, EgmSpeedRef, egm_header::MessageType,
     egm_mci_state::MciStateType, egm_motor_state::MotorStateType,
     egm_rapid_ctrl_exec_state::RapidCtrlExecStateType,
 };
-use super::stats::LatencyHistogram;
 use super::types::{EgmMode, Joints, MciState, MotorState, Pose, ROBOT_AXES, RapidExecState};
 
 mod pattern;

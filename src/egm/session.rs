@@ -34,8 +34,8 @@ use super::convert::{
     feedback_non_finite, fill_robot, header_tm, is_truncated,
 };
 use super::event::{EgmEvent, EventKind};
+use super::latency::{LatencyHistogram, fmt_duration};
 use super::proto::EgmRobot;
-use super::stats::{LatencyHistogram, fmt_duration};
 use super::types::{EgmMode, Pose, RobotFeedback, SensorReference, Target};
 
 /// Largest datagram rapidvc sends, and by default accepts (the clients' receive buffers).

@@ -139,7 +139,7 @@ impl Registry {
 }
 
 /// Overwrite a value with a parsed literal of the same shape (StrToVal, persistents).
-pub(crate) fn fill_literal(target: &mut Value, lit: &crate::rtlib::format::LitValue) -> bool {
+pub(crate) fn fill_literal(target: &mut Value, lit: &crate::functions::format::LitValue) -> bool {
     text::fill(target, lit)
 }
 
@@ -307,13 +307,13 @@ impl<'a> Ctx<'a> {
     }
 
     /// A runtime-library failure as the RAPID error it names.
-    pub fn rt(&self, e: crate::rtlib::RtError) -> Unwind {
+    pub fn rt(&self, e: crate::functions::RtError) -> Unwind {
         self.it.rt_error(e, self.span)
     }
 
     /// A `num` result computed in f64 (rounded to single precision, range-checked).
     pub fn num_result(&self, x: f64) -> Exec<Value> {
-        crate::rtlib::math::num_from_f64(x)
+        crate::functions::math::num_from_f64(x)
             .map(Value::Num)
             .map_err(|e| self.rt(e))
     }

@@ -538,9 +538,9 @@ impl Interp {
     /// of MOD follows the dividend).
     fn int_div_mod(&self, is_mod: bool, x: f64, y: f64, span: Span) -> Exec<f64> {
         let r = if is_mod {
-            crate::rtlib::math::dnum_mod(x, y)
+            crate::functions::math::dnum_mod(x, y)
         } else {
-            crate::rtlib::math::dnum_int_div(x, y)
+            crate::functions::math::dnum_int_div(x, y)
         };
         r.map_err(|e| self.rt_error(e, span))
     }

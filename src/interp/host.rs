@@ -5,7 +5,7 @@
 //! implements [`Host`]. [`VirtualHost`] is a pure counter: `WaitTime 10` advances its clock by
 //! ten seconds at once, so runs are deterministic and take no wall time. It has no robot: its
 //! motion methods keep their defaults, which fail with "this controller has no robot".
-//! `controller::host::ControllerHost` is the host with the virtual robot behind it.
+//! `controller::program_host::ControllerHost` is the host with the virtual robot behind it.
 //!
 //! # Motion
 //!
@@ -32,21 +32,21 @@
 //! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM
 //! instructions then stop the program with "… is not supported by this controller"). The
 //! natives in `interp/builtins/egm.rs` fill the registry's request types from RAPID values
-//! and name identities by their variable; `controller::egm` implements the capability for
+//! and name identities by their variable; `controller::egm_controller` implements the capability for
 //! any controller-backed host.
 
 use std::fmt;
 use std::sync::Arc;
 
 use super::errnum;
-use crate::io::{IoError, SignalTable};
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
+use crate::signals::{IoError, SignalTable};
 
-mod egm;
-mod egm_path;
-pub use egm::{EgmHost, EgmRun};
-pub use egm_path::EgmPathHost;
+mod egm_host;
+mod egm_path_host;
+pub use egm_host::{EgmHost, EgmRun};
+pub use egm_path_host::EgmPathHost;
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]

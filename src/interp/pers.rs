@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 use super::value::{Array, Value};
 use crate::ir::{Ty, TypeKind, TypeTable};
 
-pub use crate::rtlib::format::LitValue as Lit;
+pub use crate::functions::format::LitValue as Lit;
 
 /// The first line of a new persistents file.
 pub const HEADER: &str = "! rapidvc persistents: PERS data saved at the end of a run";
@@ -198,7 +198,7 @@ fn parse_line(raw: &str) -> Result<Option<Decl<'_>>, String> {
     if !(t.is_empty() || t.starts_with('!')) {
         return Err(format!("unexpected `{}` after `;`", t.trim_end()));
     }
-    let value = crate::rtlib::format::parse_value(val.trim())
+    let value = crate::functions::format::parse_value(val.trim())
         .ok_or("the value is not a RAPID literal or aggregate")?;
     Ok(Some(Decl {
         indent,

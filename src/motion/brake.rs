@@ -71,7 +71,7 @@ pub fn most_steps(speed: f64, room: f64, dt: f64) -> u64 {
 }
 
 /// A step count from a real number of steps: rounded up (a count a hair above a whole
-/// number, from rounding, is that number), at least 1, at most [`MAX_STEPS`] (NaN counts
+/// number, from rounding, is that number), at least 1, at most `MAX_STEPS` (NaN counts
 /// as 1).
 pub fn count(steps: f64) -> f64 {
     if steps.is_nan() {

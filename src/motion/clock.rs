@@ -1,5 +1,5 @@
 //! Robot time as a value: `RobotTime` (nanoseconds), the `Clock` trait and the virtual clock
-//! with its handle (the monotonic clock lives in `controller::monotonic`, the only reader of
+//! with its handle (the monotonic clock lives in `controller::monotonic_clock`, the only reader of
 //! the operating system's clock).
 
 use std::fmt;

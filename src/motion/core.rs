@@ -10,7 +10,7 @@ use super::clock::RobotTime;
 use super::correction::PathCorrection;
 use super::event::{InstrRef, MotionError, MotionEvent, Severity};
 use super::executor::Executor;
-use super::guidance::ExternalGuidance;
+use super::external_guidance::ExternalGuidance;
 use super::planner::Planner;
 use super::settings::{CoreConfig, MotionSettings};
 use super::state::{MotionState, Setpoint};

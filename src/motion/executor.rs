@@ -23,7 +23,7 @@ use super::brake::{Brake, fewest_steps};
 use super::clock::RobotTime;
 use super::correction::{PathCorrection, PathPoint, Track};
 use super::event::{EventLog, InstrRef, MotionError, MotionEvent, PathPlace, Severity};
-use super::guidance::{ExternalGuidance, GuidanceStep};
+use super::external_guidance::{ExternalGuidance, GuidanceStep};
 use super::limits::{self, SPEED_SUPERVISION_SLACK};
 use super::segment::{Sample, Segment};
 use super::settings::CoreConfig;

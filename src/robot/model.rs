@@ -1,10 +1,10 @@
 //! Robot model data (OPW geometry, axis limits, speeds, accelerations) and lookup by name.
 //!
-//! The data itself lives in [`super::models`]; this module defines its shape and how users
+//! The data itself lives in `robot/catalog.rs`; this module defines its shape and how users
 //! name a model (`--robot IRB2600-12/1.85`, `irb2600_12_185`, …).
 
 use super::JointsDeg;
-use super::models::MODELS;
+use super::catalog::MODELS;
 
 /// OPW geometry of a 6-axis arm, in **metres** (docs/robot.md, "Models").
 ///
@@ -72,10 +72,10 @@ pub struct RobotModel {
     /// Maximum axis speeds in deg/s (axis 1…6).
     pub max_speed: JointsDeg,
     /// Maximum axis accelerations in deg/s² (axis 1…6). **Not sourced from ABB**: a documented
-    /// model, see [`super::models`] (each axis reaches its top speed in a fixed ramp time).
+    /// model, see `robot/catalog.rs` (each axis reaches its top speed in a fixed ramp time).
     pub max_accel: JointsDeg,
     /// Maximum TCP speed in mm/s (the model's `vmax`). **Not sourced from ABB**: see
-    /// [`super::models`].
+    /// `robot/catalog.rs`.
     pub vmax_tcp: f64,
     /// Where the data comes from and what is uncertain about it.
     pub note: &'static str,

@@ -2,7 +2,7 @@
 //! to the parameters of user routines and natives, with type and access-mode checks.
 
 use super::error::SemaErrorKind as K;
-use super::expr::{Obj, PlaceRes};
+use super::resolve::{Obj, PlaceRes};
 use super::{Checker, LocalSym};
 use crate::ast::{self, ArgKind, ParamMode};
 use crate::ir::sig::SigMode;

@@ -1,4 +1,4 @@
-//! Semantic diagnostics: one enum, with every user-facing text in [`SemaError::details`].
+//! Semantic diagnostics: one enum, with every user-facing text in `SemaError::details`.
 
 use std::fmt;
 

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use super::error::SemaErrorKind as K;
-use super::expr::{Obj, PlaceRes};
+use super::resolve::{Obj, PlaceRes};
 use super::{Checker, LocalSym, RoutineCx};
 use crate::ast::{self, ArgKind, ExprKind as AK, ParamMode, StmtKind as S, Storage};
 use crate::ir::{Block, Handler, LateArg, LocalDecl, RoutineId, RoutineKind, Stmt, StmtKind, Ty};

@@ -15,10 +15,10 @@ use std::time::{Duration, Instant};
 use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig, SensorStats};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
 use rapidvc::egm::session::MAX_DATAGRAM_LEN;
-use rapidvc::egm::transport::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 use rapidvc::egm::{
     EgmConfig, EgmEvent, EgmMode, EgmSession, Joints, MciState, Pose, RobotFeedback, Target,
 };
+use rapidvc::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 
 pub const PERIOD: Duration = Duration::from_millis(4);
 pub const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];

@@ -1,4 +1,4 @@
-//! Reading a view page's embedded data back (the inverse of `src/view/encode.rs`), for the
+//! Reading a view page's embedded data back (the inverse of `src/output/view/encode.rs`), for the
 //! view tests.
 #![allow(dead_code)]
 

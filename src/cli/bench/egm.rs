@@ -22,21 +22,21 @@ use prost::Message;
 
 use crate::config::devices::DeviceTable;
 use crate::config::moc::MocConfig;
-use crate::controller::egm::{EgmController, EgmHook, EgmSetup, LastMove};
+use crate::controller::egm_controller::{EgmController, EgmHook, EgmSetup, LastMove};
 use crate::controller::{
     ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, CycleHook,
     RealtimeConfig,
 };
+use crate::egm::latency::{LatencyHistogram, fmt_duration};
 use crate::egm::registry::{ActJoint, RegistryConfig, RunArgs, SetupUc};
 use crate::egm::servo::StopMode;
-use crate::egm::stats::{LatencyHistogram, fmt_duration};
 use crate::egm::{DriverOptions, EgmMode, proto};
-use crate::io::SignalTable;
 use crate::motion::{Executor, RobotTime, Setpoint};
 use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
 use crate::robot::{Pose, Robot, ToolData, WobjData};
+use crate::signals::SignalTable;
 
 const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
 
@@ -332,7 +332,7 @@ fn drive(
     };
     let mut handle = ControllerHandle::start_with_hook(config, Vec::new(), Some(Box::new(probe)))
         .map_err(ctl_err)?;
-    let fail = |e: crate::controller::egm::EgmFailure| e.to_string();
+    let fail = |e: crate::controller::egm_controller::EgmFailure| e.to_string();
     handle
         .submit(MotionCommand::MoveAbsJ(MoveAbsJ {
             args: MoveArgs {

@@ -1,7 +1,7 @@
-//! The sensor side of one path-corrected sequence (EGMMoveL/EGMMoveC): `EgmRobot` at the EGMActMove rate and the corrections that come back — from a UdpUc or built-in device (`EgmSensorPathCorr`), signals (`\<p>R2y`, `\<p>R3z`), or a simulated LTAPP seam — for the motion core's [`crate::egm::pathcorr::PathCorrector`].
+//! The sensor side of one path-corrected sequence (EGMMoveL/EGMMoveC): `EgmRobot` at the EGMActMove rate and the corrections that come back — from a UdpUc or built-in device (`EgmSensorPathCorr`), signals (`\<p>R2y`, `\<p>R3z`), or a simulated LTAPP seam — for the motion core's [`crate::egm::path_correction::PathCorrector`].
 //!
 //! The motion core owns the geometry (path frame, arc length, smoothing, APTR/LATR
-//! scheduling, all in `egm::pathcorr`); this link only moves messages. Per motion tick:
+//! scheduling, all in `egm::path_correction`); this link only moves messages. Per motion tick:
 //!
 //! ```text
 //! t = link.tick(now, &CorrectionInput { commanded, tool, wobj, tcp_s, look_ahead });
@@ -14,17 +14,17 @@ use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::event::EgmEvent;
-use crate::egm::guidance::{SignalSource, feedback_in_wobj};
-use crate::egm::log::{LogKind, LogRing, LogRow};
-use crate::egm::pathcorr::{SeamProfile, Tracker};
+use crate::egm::geometry::{SignalSource, feedback_in_wobj};
+use crate::egm::message_log::{LogKind, LogRing, LogRow};
+use crate::egm::path_correction::{SeamProfile, Tracker};
 use crate::egm::registry::{MovePlan, TrackerKind};
 use crate::egm::session::{EgmSession, EgmStats, SourceFilter};
 use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState,
     RobotFeedback, Target,
 };
-use crate::io::SignalTable;
 use crate::robot::{Robot, ToolData, WobjData};
+use crate::signals::SignalTable;
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
@@ -43,7 +43,7 @@ pub struct Correction {
 }
 
 impl Correction {
-    /// The age in seconds (what [`crate::egm::pathcorr::PathCorrector::measurement`]
+    /// The age in seconds (what [`crate::egm::path_correction::PathCorrector::measurement`]
     /// takes).
     pub fn age_s(&self) -> f64 {
         self.age.as_secs_f64()

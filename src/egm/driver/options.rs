@@ -5,11 +5,11 @@ use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::convert::EncodeOptions;
-use crate::egm::log::DEFAULT_LOG_CAPACITY;
+use crate::egm::message_log::DEFAULT_LOG_CAPACITY;
 use crate::egm::servo::{DEFAULT_SERVO_DELAY, MAX_SERVO_DELAY, MIN_PERIOD};
 use crate::egm::session::{DropTally, QueuePolicy, SourceFilter};
-use crate::io::SignalTable;
 use crate::robot::Robot;
+use crate::signals::SignalTable;
 
 /// Most events waiting in a driver; further ones are counted and lost.
 pub const MAX_EVENTS: usize = 64;

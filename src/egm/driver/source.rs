@@ -5,13 +5,13 @@ use std::time::{Duration, Instant};
 
 use crate::egm::EgmError;
 use crate::egm::event::{EgmEvent, EventKind};
-use crate::egm::guidance::SignalSource;
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::geometry::SignalSource;
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};
-use crate::egm::transport::{DEFAULT_DRAIN_LIMIT, UdpTransport};
-use crate::io::SignalKind;
+use crate::signals::SignalKind;
+use crate::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 
 use super::EventQueue;
 

@@ -4,8 +4,8 @@ use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::event::EgmEvent;
-use crate::egm::guidance::feedback_in_wobj;
-use crate::egm::log::{LogKind, LogRing, LogRow};
+use crate::egm::geometry::feedback_in_wobj;
+use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::StreamPlan;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::session::{EgmSession, SourceFilter};

@@ -12,7 +12,7 @@ use crate::config::moc::MocConfig;
 use crate::egm::registry::{
     ActJoint, ActPose, EgmRegistry, RegistryConfig, RunArgs, SetupSignals, SetupUc,
 };
-use crate::io::SignalKind;
+use crate::signals::SignalKind;
 
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
 

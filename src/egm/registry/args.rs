@@ -1,10 +1,10 @@
 //! The arguments of the EGM setup, activation and movement instructions as the interpreter passes them: optional arguments stay `None` here, defaults are applied by the registry.
 
-use crate::egm::guidance::EgmFrameType;
+use crate::egm::geometry::EgmFrameType;
 use crate::egm::servo::{MinMax, StopMode};
 use crate::egm::types::EgmMode;
-use crate::io::{SignalId, SignalKind};
 use crate::robot::{LoadData, Pose, ToolData, WobjData};
+use crate::signals::{SignalId, SignalKind};
 
 use super::EgmError;
 

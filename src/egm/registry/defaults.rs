@@ -23,7 +23,7 @@
 
 use std::time::Duration;
 
-use crate::egm::guidance::Convergence;
+use crate::egm::geometry::Convergence;
 use crate::egm::servo::{self, MinMax};
 use crate::egm::session;
 

@@ -11,9 +11,9 @@ use std::time::Duration;
 use crate::config::devices::DeviceError;
 use crate::config::moc::UnknownProfile;
 use crate::egm::event::{EgmEvent, EventKind};
-use crate::egm::guidance::GuidanceError;
+use crate::egm::geometry::GuidanceError;
+use crate::egm::latency::fmt_duration;
 use crate::egm::servo::ServoError;
-use crate::egm::stats::fmt_duration;
 
 /// The RAPID error of every UdpUc communication failure.
 pub const ERR_UDPUC_COMM: &str = "ERR_UDPUC_COMM";

@@ -4,13 +4,13 @@ use std::net::SocketAddr;
 use std::time::Duration;
 
 use crate::config::moc::ExtMotionProfile;
-use crate::egm::guidance::{Convergence, PoseSetup, SignalSource};
-use crate::egm::pathcorr::SeamProfile;
+use crate::egm::geometry::{Convergence, PoseSetup, SignalSource};
+use crate::egm::path_correction::SeamProfile;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::{MinMax, ServoParams, StopMode};
 use crate::egm::types::{EgmMode, ROBOT_AXES};
-use crate::io::{SignalId, SignalKind};
 use crate::robot::{LoadData, Pose, Robot, ToolData, WobjData};
+use crate::signals::{SignalId, SignalKind};
 
 use super::{EgmId, TrackerKind};
 

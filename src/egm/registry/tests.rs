@@ -10,7 +10,7 @@ use super::*;
 use crate::config::devices::DeviceOverride;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::StopMode;
-use crate::io::SignalKind;
+use crate::signals::SignalKind;
 
 fn registry_with(overrides: &[&str]) -> EgmRegistry {
     let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();

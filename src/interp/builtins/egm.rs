@@ -11,7 +11,7 @@
 
 use super::{Ctx, NativeFn, Registry};
 use crate::egm::EgmError;
-use crate::egm::guidance::EgmFrameType;
+use crate::egm::geometry::EgmFrameType;
 use crate::egm::registry::{
     ActCommon, ActJoint, ActMove, ActPose, RunArgs, SetupLtapp, SetupSignals, SetupUc, TrackerKind,
     frame_type_from_value, stop_mode_from_value,
@@ -24,10 +24,10 @@ use crate::interp::error::{ErrorKind, Exec, Unwind};
 use crate::interp::host::{EgmHost, EgmRun, HostError, MotionWait};
 use crate::interp::place::AbsRoot;
 use crate::interp::value::Value;
-use crate::io::{SignalId, SignalKind};
 use crate::ir::GlobalOrigin;
 use crate::robot::units::pose_from_pos_quat;
 use crate::robot::{LoadData, Pose, ToolData, WobjData};
+use crate::signals::{SignalId, SignalKind};
 
 /// How often a waiting EGM instruction looks at the controller (one motion cycle).
 const POLL: f64 = 0.004;

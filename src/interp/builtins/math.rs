@@ -1,10 +1,10 @@
 //! Arithmetic functions (`Abs`, `Round`, `Trunc`, `Sqrt`, `Pow`, `Exp`, trigonometry in
-//! degrees, num/dnum conversions) over the runtime library's [`crate::rtlib::math`].
+//! degrees, num/dnum conversions) over the runtime library's [`crate::functions::math`].
 
 use super::{Ctx, Registry};
+use crate::functions::math as m;
 use crate::interp::error::Exec;
 use crate::interp::value::Value;
-use crate::rtlib::math as m;
 
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
@@ -81,12 +81,12 @@ fn dec(cx: &Ctx<'_>, i: usize) -> Exec<i32> {
     })
 }
 
-fn unary(cx: &mut Ctx<'_>, f: fn(f64) -> crate::rtlib::RtResult<f64>) -> Exec<Value> {
+fn unary(cx: &mut Ctx<'_>, f: fn(f64) -> crate::functions::RtResult<f64>) -> Exec<Value> {
     let x = f(cx.f64(0)?).map_err(|e| cx.rt(e))?;
     cx.num_result(x)
 }
 
-fn unary_d(cx: &mut Ctx<'_>, f: fn(f64) -> crate::rtlib::RtResult<f64>) -> Exec<Value> {
+fn unary_d(cx: &mut Ctx<'_>, f: fn(f64) -> crate::functions::RtResult<f64>) -> Exec<Value> {
     let x = f(cx.f64(0)?).map_err(|e| cx.rt(e))?;
     Ok(Value::Dnum(x))
 }

@@ -1,11 +1,11 @@
 //! Frame and vector functions (`Offs`, `RelTool`, `OrientZYX`, `EulerZYX`, `PoseMult`,
 //! `PoseInv`, `PoseVect`, `NOrient`, `Distance`, `VectMagn`, `DotProd`, `CrossProd`) over
-//! the runtime library's [`crate::rtlib::pose`].
+//! the runtime library's [`crate::functions::pose`].
 
 use super::{Ctx, Registry};
+use crate::functions::pose::{self as p, Pose};
 use crate::interp::error::Exec;
 use crate::interp::value::Value;
-use crate::rtlib::pose::{self as p, Pose};
 
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {

@@ -1,9 +1,9 @@
 //! String functions (`StrLen`, `StrPart`, `StrFind`, `StrMatch`, `StrMemb`, `StrMap`,
-//! `ByteToStr`, `StrToByte`) over the runtime library's [`crate::rtlib::string`].
+//! `ByteToStr`, `StrToByte`) over the runtime library's [`crate::functions::string`].
 
 use super::{Ctx, Registry};
+use crate::functions::string as s;
 use crate::interp::value::Value;
-use crate::rtlib::string as s;
 
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {

@@ -1,12 +1,12 @@
 //! Text output and conversion: `TPWrite`, `TPErase`, `ValToStr`, `NumToStr`, `DnumToStr`,
-//! `StrToVal`, with the number formatting of [`crate::rtlib::format`].
+//! `StrToVal`, with the number formatting of [`crate::functions::format`].
 
 use super::{Ctx, Registry};
+use crate::functions::format as f;
 use crate::interp::errnum;
 use crate::interp::error::Exec;
 use crate::interp::host::Output;
 use crate::interp::value::{MAX_STRING, Value};
-use crate::rtlib::format as f;
 
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {

@@ -1,0 +1,196 @@
+//! The EGM side of every motion cycle ([`EgmHook`], a [`CycleHook`]): position streams are ticked with the cycle's setpoint, the running EGM run's events and log rows are handed out (event channel, `--egm-log` writer, output feed), lockstep waits for the sensor's reply, and a run that ended is handed back to the program side.
+//!
+//! Runs on the motion thread in real time and inline in virtual time. It never blocks
+//! (bounded channels with `try_send`, a `try_lock` on the stream list) except for the
+//! lockstep wait, which only exists in virtual time, where the cycle runs on the program's
+//! thread anyway.
+
+use std::any::Any;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::SyncSender;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use crate::controller::CycleHook;
+use crate::egm::EgmMode;
+use crate::egm::message_log::LogRow;
+use crate::egm::registry::EgmId;
+use crate::egm::types::RapidExecState;
+use crate::egm::{EgmEvent, EgmStream};
+use crate::motion::{Executor, ExternalGuidance, RobotTime, Setpoint};
+use crate::output::{EgmAxes, EgmTraceState, Feed};
+
+use super::run_guidance::EgmGuidance;
+
+/// A running position stream.
+#[derive(Debug)]
+pub(crate) struct StreamSlot {
+    pub id: EgmId,
+    pub name: Arc<str>,
+    pub stream: EgmStream,
+}
+
+/// What the program side and the hook share.
+#[derive(Debug, Default)]
+pub(crate) struct Shared {
+    /// The running streams (the hook only ever `try_lock`s).
+    pub streams: Mutex<Vec<StreamSlot>>,
+    /// False once the program has stopped (streams report RAPID_STOPPED).
+    pub rapid_stopped: AtomicBool,
+    /// Lockstep: waits for a reply, and waits that ended without one.
+    pub lockstep_waits: AtomicU64,
+    /// Lockstep waits that timed out.
+    pub lockstep_timeouts: AtomicU64,
+    /// Events lost because the program side did not take them in time.
+    pub events_dropped: AtomicU64,
+    /// Log rows lost because the log writer did not keep up.
+    pub rows_dropped: AtomicU64,
+}
+
+/// An event of an EGM identity.
+#[derive(Clone, Debug)]
+pub(crate) struct NamedEvent {
+    pub name: Arc<str>,
+    pub event: EgmEvent,
+}
+
+/// One `--egm-log` row.
+pub(crate) type NamedRow = (Arc<str>, LogRow);
+
+/// The cycle hook (see the module docs).
+pub struct EgmHook {
+    pub(crate) shared: Arc<Shared>,
+    pub(crate) events: SyncSender<NamedEvent>,
+    pub(crate) retired: SyncSender<Box<dyn ExternalGuidance>>,
+    pub(crate) log: Option<SyncSender<NamedRow>>,
+    pub(crate) feed: Option<Feed>,
+    pub(crate) lockstep: Option<Duration>,
+    /// EGMMoveL/EGMMoveC (`controller::corrected_moves`).
+    pub(crate) pathcorr: crate::controller::corrected_moves::PathCorrHook,
+}
+
+impl std::fmt::Debug for EgmHook {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EgmHook")
+            .field("lockstep", &self.lockstep)
+            .finish_non_exhaustive()
+    }
+}
+
+impl EgmHook {
+    fn event(&self, name: &Arc<str>, event: EgmEvent) {
+        let e = NamedEvent {
+            name: Arc::clone(name),
+            event,
+        };
+        if self.events.try_send(e).is_err() {
+            self.shared.events_dropped.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    fn row(&self, name: &Arc<str>, row: LogRow) {
+        if let Some(log) = &self.log
+            && log.try_send((Arc::clone(name), row)).is_err()
+        {
+            self.shared.rows_dropped.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+
+    /// Events and log rows of the run.
+    fn drain_run(&self, g: &mut EgmGuidance) {
+        while let Some(e) = g.driver.poll_event() {
+            self.event(&g.name, e);
+        }
+        while let Some(row) = g.driver.pop_log() {
+            self.row(&g.name, row);
+        }
+    }
+
+    /// One feed sample per motion cycle of a run: the reference in use and the measured
+    /// position, in joints or in the correction frame.
+    fn feed_run(&self, sp: &Setpoint, g: &mut EgmGuidance) {
+        if let Some(feed) = &self.feed {
+            let (reference, feedback) = g.driver.tracking();
+            let axes = match g.driver.mode() {
+                EgmMode::Pose => EgmAxes::Pose,
+                _ => EgmAxes::Joint,
+            };
+            feed.push_egm_sample(
+                sp.time,
+                axes,
+                reference,
+                feedback,
+                EgmTraceState::Running,
+                std::mem::take(&mut g.speed_limited),
+            );
+        }
+    }
+
+    fn tick_streams(&self, sp: &Setpoint) {
+        let Ok(mut streams) = self.shared.streams.try_lock() else {
+            return;
+        };
+        let exec = if self.shared.rapid_stopped.load(Ordering::Relaxed) {
+            RapidExecState::Stopped
+        } else {
+            RapidExecState::Running
+        };
+        let now = sp.time.since_start();
+        for s in streams.iter_mut() {
+            s.stream.tick(now, &sp.joints, exec);
+            while let Some(e) = s.stream.poll_event() {
+                self.event(&s.name, e);
+            }
+            while let Some(row) = s.stream.pop_log() {
+                if let Some(feed) = &self.feed {
+                    feed.push_egm_sample(
+                        RobotTime::from_duration(row.send_time),
+                        EgmAxes::Joint,
+                        None,
+                        row.feedback,
+                        EgmTraceState::Running,
+                        false,
+                    );
+                }
+                self.row(&s.name, row);
+            }
+        }
+    }
+}
+
+impl CycleHook for EgmHook {
+    fn before_tick(&mut self, now: RobotTime, exec: &mut Executor) {
+        self.pathcorr.before_tick(now, exec);
+    }
+
+    fn after_tick(&mut self, sp: &Setpoint, exec: &mut Executor) {
+        self.pathcorr.after_tick(sp, exec);
+        if let Some(g) = exec.guidance_as::<EgmGuidance>() {
+            self.feed_run(sp, g);
+            self.drain_run(g);
+            if let Some(timeout) = self.lockstep
+                && g.driver.awaiting_reply()
+            {
+                self.shared.lockstep_waits.fetch_add(1, Ordering::Relaxed);
+                if !g.driver.wait_reply(timeout) {
+                    self.shared
+                        .lockstep_timeouts
+                        .fetch_add(1, Ordering::Relaxed);
+                }
+            }
+        }
+        if let Some(mut retired) = exec.take_retired() {
+            let any: &mut dyn Any = retired.as_mut();
+            if let Some(g) = any.downcast_mut::<EgmGuidance>() {
+                self.drain_run(g);
+                if let Some(feed) = &self.feed {
+                    feed.push_egm_state(sp.time, EgmTraceState::Connected);
+                }
+            }
+            // At most one run exists at a time and the program side takes it before starting
+            // another, so the channel (capacity 4) has room.
+            let _ = self.retired.try_send(retired);
+        }
+        self.tick_streams(sp);
+    }
+}
