@@ -40,13 +40,13 @@ fn main() {
     let before = peak_rss_kb();
     let mut map = SourceMap::new();
     let mut diags = Diagnostics::new();
-    let id = rapidvc::load::load_file(&mut map, &path).expect("read the program");
+    let id = rapidvc::program::rapid_files::load_file(&mut map, &path).expect("read the program");
     let text = map.get(id).text.clone();
     let file = rapidvc::parse::parse_file(id, &text, &mut diags);
     rapidvc::parse::check_structure(&file, &mut diags);
     let registry = rapidvc::interp::Registry::standard();
     let files = [file];
-    rapidvc::cli::program::check_files(&files, &[path], &mut map, &registry, &mut diags);
+    rapidvc::program::check_files(&files, &[path], &mut map, &registry, &mut diags);
     let peak = peak_rss_kb();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(diags.is_empty(), "the generated program must check clean");

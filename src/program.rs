@@ -178,7 +178,7 @@ fn sema_errors(
     let mut diags = Diagnostics::new();
     let std_files = parse_stdlib(sources, &mut diags);
     let env = sema::Env::from_signals(signals);
-    sema::analyze_to_vec(&sema_inputs(&std_files, user), registry.signatures(), &env).1
+    sema::check_only(&sema_inputs(&std_files, user), registry.signatures(), &env)
 }
 
 /// Run the semantic pass over already parsed user files (plus the stdlib).
