@@ -23,6 +23,7 @@ use rapidvc::egm::{
 };
 use rapidvc::robot::Robot;
 use rapidvc::signals::SignalTable;
+use rapidvc::time::RobotTime;
 use rapidvc::wire::udp::UdpTransport;
 
 fn feedback() -> RobotFeedback {
@@ -31,7 +32,7 @@ fn feedback() -> RobotFeedback {
         orient: [0.0, 0.0, 1.0, 0.0],
     };
     let mut fb = RobotFeedback::standing([1.0, 2.0, 3.0, 4.0, 35.0, 6.0], pose);
-    fb.time = Duration::new(1_700_000_000, 123_456_000);
+    fb.time = RobotTime::from_duration(Duration::new(1_700_000_000, 123_456_000));
     fb.planned_time = fb.time + Duration::from_millis(12);
     fb.utilization = 42.0;
     fb
@@ -78,7 +79,7 @@ fn codec(c: &mut Criterion) {
                     mode,
                     &Pose::IDENTITY,
                     &limits,
-                    Duration::ZERO,
+                    RobotTime::ZERO,
                 )
                 .unwrap()
             })
@@ -90,8 +91,8 @@ fn session_and_sensor(c: &mut Criterion) {
     let fb = feedback();
     let remote = "127.0.0.1:6510".parse().unwrap();
     let mut session = EgmSession::new(EgmConfig::new(EgmMode::Joint, remote)).unwrap();
-    session.start(Duration::ZERO);
-    let mut now = Duration::ZERO;
+    session.start(RobotTime::ZERO);
+    let mut now = RobotTime::ZERO;
     let mut buf = Vec::with_capacity(1024);
     c.bench_function("egm/session poll_transmit_into (one cycle)", |b| {
         b.iter(|| {
@@ -113,7 +114,7 @@ fn session_and_sensor(c: &mut Criterion) {
     c.bench_function("egm/builtin sensor handle_datagram (decode + reply)", |b| {
         b.iter(|| {
             sensor
-                .handle_datagram(now, black_box(&robot_bytes))
+                .handle_datagram(now.since_start(), black_box(&robot_bytes))
                 .unwrap()
         })
     });
@@ -191,14 +192,14 @@ fn loopback(exchanges: u32) {
     let mut transport = UdpTransport::for_device(0, sensor_addr).unwrap();
     let mut session = EgmSession::new(EgmConfig::new(EgmMode::Joint, sensor_addr)).unwrap();
     let origin = Instant::now();
-    session.start(Duration::ZERO);
+    session.start(RobotTime::ZERO);
     let mut fb = feedback();
     let mut buf = Vec::with_capacity(1024);
     let mut rtt = LatencyHistogram::new();
     let mut lost = 0u32;
     for k in 0..exchanges {
-        let now = Duration::from_millis(4) * k;
-        fb.time = origin.elapsed();
+        let now = RobotTime::from_duration(Duration::from_millis(4) * k);
+        fb.time = RobotTime::from_duration(origin.elapsed());
         assert!(session.poll_transmit_into(now, &fb, &mut buf));
         let sent = Instant::now();
         transport.send(&buf).unwrap();
@@ -302,7 +303,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
     };
     let start = [0.0, 10.0, 10.0, 0.0, 40.0, 0.0];
     let source = EgmSource::open(&plan.source).unwrap();
-    let driver = EgmDriver::start(Duration::ZERO, &ctx, &plan, source, &start).unwrap();
+    let driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &start).unwrap();
     (driver, start)
 }
 
@@ -329,7 +330,7 @@ fn driver(c: &mut Criterion) {
     ];
     for (name, mode, pattern, rate) in cases {
         let (mut d, mut q) = endless_driver(mode, pattern, rate);
-        let mut now = Duration::ZERO;
+        let mut now = RobotTime::ZERO;
         c.bench_function(name, |b| {
             b.iter(|| {
                 now += Duration::from_millis(4);

@@ -18,6 +18,7 @@ pub mod period_stats;
 pub mod priority;
 pub mod program_host;
 mod realtime_driver;
+pub mod sample_feed;
 pub mod service;
 pub mod summary;
 pub mod tick_sink;

@@ -1,9 +1,9 @@
-//! The sans-IO motion core: robot time and clocks, trapezoidal profiles, the planner for
+//! The sans-IO motion core: trapezoidal profiles, the planner for
 //! MoveAbsJ/MoveJ/MoveL/MoveC with zones and corner paths, and the fixed-rate
 //! `MotionCore::tick(now)` that plays the planned samples under supervision.
 //!
 //! Nothing here sleeps, spawns threads, opens sockets or reads the operating system's clock;
-//! `controller::motion_thread` drives the core, and tests drive it by hand with a [`clock::VirtualClock`].
+//! `controller::motion_thread` drives the core, and tests drive it by hand with a [`crate::time::VirtualClock`].
 //!
 //! Design: every move is planned completely when it is queued (the inverse kinematics of every
 //! cycle of a linear move included), so errors surface before the robot moves and the cycle
@@ -11,7 +11,6 @@
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 pub mod brake;
-pub mod clock;
 pub mod core;
 pub mod correction;
 pub mod event;
@@ -25,7 +24,7 @@ pub mod settings;
 pub mod state;
 
 pub use self::core::{EnqueueError, MotionCore};
-pub use clock::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
+pub use crate::time::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
 pub use correction::{PathCorrection, PathPoint};
 pub use event::{InstrRef, MotionError, MotionEvent, PathPlace, Severity};
 pub use executor::Executor;

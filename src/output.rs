@@ -4,14 +4,15 @@
 //! feeds them through a [`Feed`]. They are [`crate::controller::TickSink`]s: readers of the
 //! cycles, never called from inside one.
 
-pub mod feed;
 pub mod number_format;
 pub mod plot;
 pub mod progress;
 pub mod trace;
 pub mod view;
 
-pub use feed::{EgmAxes, EgmSample, EgmTraceState, Feed, FeedItem, FeedRx, PathCorrSample};
+pub use crate::controller::sample_feed::{
+    EgmAxes, EgmSample, EgmTraceState, Feed, FeedItem, FeedRx, PathCorrSample,
+};
 pub use plot::{PlotData, PlotRecorder};
 pub use progress::{Progress, ProgressSink};
 pub use trace::{TRACE_HEADER, TraceColumns, TraceWriter};

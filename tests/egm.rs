@@ -16,6 +16,7 @@ use rapidvc::egm::proto::{EgmJoints, EgmPlanned, EgmRobot, EgmSensor};
 use rapidvc::egm::servo::ServoInput;
 use rapidvc::egm::session::MAX_DATAGRAM_LEN;
 use rapidvc::egm::{EgmMode, EgmSession, Pose, SourceFilter, Target};
+use rapidvc::time::RobotTime;
 
 mod loopback {
     use super::*;
@@ -210,7 +211,7 @@ mod fixtures {
             mode,
             &Pose::IDENTITY,
             &ReferenceLimits::default(),
-            Duration::ZERO,
+            RobotTime::ZERO,
         )
         .unwrap_or_else(|e| panic!("{name}: {e}"))
         .target

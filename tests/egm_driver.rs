@@ -25,10 +25,16 @@ use rapidvc::egm::{
 use rapidvc::robot::units::pose_from_pos_quat;
 use rapidvc::robot::{ConfData, LoadData, Robot, ToolData};
 use rapidvc::signals::{SignalKind, SignalTable};
+use rapidvc::time::RobotTime;
 
 const TICK: Duration = Duration::from_millis(4);
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
 const ALL_J: [bool; 7] = [true, true, true, true, true, true, false];
+
+/// Robot time `d` after the start.
+fn rt(d: Duration) -> RobotTime {
+    RobotTime::from_duration(d)
+}
 
 fn registry(overrides: &[String]) -> EgmRegistry {
     let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();
@@ -48,7 +54,7 @@ fn ctx(signals: Arc<SignalTable>) -> DriverContext {
 /// A driver for `plan` started at time zero from `START`, with the plan's own source.
 fn start_at_zero(ctx: &DriverContext, plan: &rapidvc::egm::registry::RunPlan) -> EgmDriver {
     let source = EgmSource::open(&plan.source).unwrap();
-    EgmDriver::start(Duration::ZERO, ctx, plan, source, &START).unwrap()
+    EgmDriver::start(RobotTime::ZERO, ctx, plan, source, &START).unwrap()
 }
 
 fn uc(device: &str, mode: EgmMode) -> SetupUc {
@@ -87,7 +93,7 @@ fn drive(driver: &mut EgmDriver, mut now: Duration, max: usize, lockstep: bool) 
     let mut events = Vec::new();
     let mut rows = Vec::new();
     for _ in 0..max {
-        let t = driver.tick(now, &q);
+        let t = driver.tick(rt(now), &q);
         robot.check_limits(&t.joints_cmd).unwrap();
         q = t.joints_cmd;
         while let Some(e) = driver.poll_event() {
@@ -141,7 +147,7 @@ mod builtin {
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let source = EgmSource::open(&plan.source).unwrap();
         let t0 = Duration::from_secs(3);
-        let mut driver = EgmDriver::start(t0, &ctx, &plan, source, &START).unwrap();
+        let mut driver = EgmDriver::start(rt(t0), &ctx, &plan, source, &START).unwrap();
         let run = drive(&mut driver, t0, 5000, false);
         assert_eq!(run.result, Ok(EgmEnd::Converged));
         reg.run_finished(id, true);
@@ -188,7 +194,7 @@ mod builtin {
         );
         assert!(run.end > t0 + Duration::from_secs(1));
         // Finished is reported once; later ticks stand still.
-        let after = driver.tick(run.end + TICK, &last.joints_cmd);
+        let after = driver.tick(rt(run.end + TICK), &last.joints_cmd);
         assert!(after.finished.is_none() && !after.sent);
         assert_eq!(after.joints_cmd, last.joints_cmd);
         assert_eq!(driver.outcome(), Some(&Ok(EgmEnd::Converged)));
@@ -244,7 +250,7 @@ mod builtin {
         let mut driver = start_at_zero(&ctx, &plan);
         let mut q = START;
         for k in 0..125u32 {
-            let t = driver.tick(TICK * k, &q);
+            let t = driver.tick(rt(TICK * k), &q);
             assert!(t.finished.is_none());
             q = t.joints_cmd;
         }
@@ -260,7 +266,7 @@ mod builtin {
         let (mut before, mut at) = (START, START);
         for k in 0..100u32 {
             before = at;
-            at = driver.tick(TICK * k, &at).joints_cmd;
+            at = driver.tick(rt(TICK * k), &at).joints_cmd;
         }
         let reference = driver.tracking().0.unwrap();
         driver.halt();
@@ -312,7 +318,7 @@ mod builtin {
             .unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let mut driver = start_at_zero(&ctx, &plan);
-        let t = driver.tick(Duration::ZERO, &START);
+        let t = driver.tick(rt(Duration::ZERO), &START);
         assert_eq!(t.finished, Some(Ok(EgmEnd::NoMovement)));
         assert_eq!(t.joints_cmd, START);
         assert_eq!(driver.session_stats().unwrap().sent, 0);
@@ -367,7 +373,7 @@ mod builtin {
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let jpos10 = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
         let mut driver = EgmDriver::start(
-            Duration::ZERO,
+            RobotTime::ZERO,
             &ctx,
             &plan,
             EgmSource::open(&plan.source).unwrap(),
@@ -501,7 +507,7 @@ mod signals {
         assert_eq!(plan.sample_period, Duration::from_millis(16));
         let ctx = ctx(Arc::clone(&table));
         let source = EgmSource::open(&plan.source).unwrap();
-        let mut driver = EgmDriver::start(Duration::ZERO, &ctx, &plan, source, &start).unwrap();
+        let mut driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &start).unwrap();
         let run = drive(&mut driver, Duration::ZERO, 20_000, false);
         // Samples every 16 ms: one logged row per sample.
         let rows = &run.rows;
@@ -636,9 +642,9 @@ mod udp {
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let source = EgmSource::open(&plan.source).unwrap();
         assert!(source.is_external());
-        let mut driver = EgmDriver::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         // Lockstep: the first tick sends and then waits for the reply.
-        let t = driver.tick(Duration::ZERO, &START);
+        let t = driver.tick(rt(Duration::ZERO), &START);
         assert!(t.sent && driver.awaiting_reply());
         assert!(driver.wait_reply(Duration::from_secs(2)));
         let run = drive(&mut driver, TICK, 3000, true);
@@ -762,13 +768,13 @@ mod udp {
         assert_eq!(reg.state(id), (EgmState::Running, CorrState::Stopped));
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let source = EgmSource::open(&plan.source).unwrap();
-        let mut stream = EgmStream::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut stream = EgmStream::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         // A MoveAbsJ-like ramp on J1, 20 ticks.
         let mut sent = 0;
         for k in 0..20u32 {
             let mut q = START;
             q[0] = f64::from(k) * 0.5;
-            let t = stream.tick(TICK * k, &q, RapidExecState::Running);
+            let t = stream.tick(rt(TICK * k), &q, RapidExecState::Running);
             sent += usize::from(t.sent);
         }
         assert_eq!(sent, 10, "every 8 ms");
@@ -870,7 +876,7 @@ mod path_correction {
         assert_eq!(reg.state(id), (EgmState::Running, CorrState::Running));
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let source = EgmSource::open(&plan.source).unwrap();
-        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut link = CorrectionLink::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         let mut corrector = PathCorrector::new(PathCorrConfig::aptr()).unwrap();
         corrector.start(0.0, 0.0);
         let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
@@ -885,7 +891,7 @@ mod path_correction {
                 tcp_s: f64::from(k) * 0.04,
                 look_ahead: 0.0,
             };
-            let t = link.tick(now, &input);
+            let t = link.tick(rt(now), &input);
             assert!(t.failed.is_none());
             if let Some(c) = t.correction {
                 arrivals.push(now);
@@ -938,7 +944,7 @@ mod path_correction {
         let source = EgmSource::open(&plan.source).unwrap();
         assert!(
             EgmDriver::start(
-                Duration::ZERO,
+                RobotTime::ZERO,
                 &ctx,
                 &{
                     let mut p = reg_plan_for_guidance();
@@ -951,7 +957,7 @@ mod path_correction {
             .is_err(),
             "a seam cannot guide"
         );
-        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut link = CorrectionLink::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         let seam: SeamProfile = "sine:y=2,z=0.5,period=200".parse().unwrap();
         let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
         let mut got = 0;
@@ -964,10 +970,10 @@ mod path_correction {
                 tcp_s,
                 look_ahead: 30.0,
             };
-            if let Some(c) = link.tick(TICK * k, &input).correction {
+            if let Some(c) = link.tick(rt(TICK * k), &input).correction {
                 let want = seam.sensed_at(Tracker::Latr { look_ahead: 30.0 }, tcp_s);
                 assert_eq!(c.pos, [0.0, want.y, want.z]);
-                assert_eq!(c.received_at, TICK * k);
+                assert_eq!(c.received_at, rt(TICK * k));
                 got += 1;
             }
         }
@@ -999,7 +1005,7 @@ mod path_correction {
         let plan = reg.move_start(id, "EGMMoveC").unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let source = EgmSource::open(&plan.source).unwrap();
-        let mut link = CorrectionLink::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+        let mut link = CorrectionLink::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
         let input = CorrectionInput {
             commanded: START,
@@ -1010,7 +1016,7 @@ mod path_correction {
         };
         let mut failed_at = None;
         for k in 0..300u32 {
-            let t = link.tick(TICK * k, &input);
+            let t = link.tick(rt(TICK * k), &input);
             if let Some(err) = t.failed {
                 assert_eq!(err.rapid_error(), Some("ERR_UDPUC_COMM"));
                 assert_eq!(err.event().number, 41822);

@@ -28,34 +28,6 @@ struct Exception {
 
 /// Issue 11, item 3 ("Layers point down only") removes every one of these.
 const EXCEPTIONS: &[Exception] = &[
-    // The interpreter builds EGM requests from the registry's own argument types, the servo's
-    // stop mode and min/max windows, and the mode and frame enums; item 3 moves that shared
-    // vocabulary to a module both sides may use.
-    Exception {
-        from: "interp",
-        to: "egm::registry",
-        why: "issue 11 item 3: EGM arguments as RAPID passes them move below interp and egm",
-    },
-    Exception {
-        from: "interp",
-        to: "egm::servo",
-        why: "issue 11 item 3: StopMode and MinMax move below interp and egm",
-    },
-    Exception {
-        from: "interp",
-        to: "egm::types",
-        why: "issue 11 item 3: EgmMode moves below interp and egm",
-    },
-    Exception {
-        from: "interp",
-        to: "egm::geometry",
-        why: "issue 11 item 3: EgmFrameType moves below interp and egm",
-    },
-    Exception {
-        from: "interp",
-        to: "egm::EgmError",
-        why: "issue 11 item 3: EGM failures reach the interpreter as host errors",
-    },
     // The EGM registry reads the device table and the MOC profiles of the configuration;
     // item 3 hands egm what it needs from config as plain values.
     Exception {
@@ -78,38 +50,6 @@ const EXCEPTIONS: &[Exception] = &[
         from: "egm",
         to: "config::sio",
         why: "issue 11 item 3: egm gets its device keys from config as plain values",
-    },
-    // The controller pushes EGM and path-correction samples into the output's feed; item 3
-    // lets the controller own that stream (the outputs only read it).
-    Exception {
-        from: "controller",
-        to: "output::Feed",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
-    },
-    Exception {
-        from: "controller",
-        to: "output::FeedItem",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
-    },
-    Exception {
-        from: "controller",
-        to: "output::FeedRx",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
-    },
-    Exception {
-        from: "controller",
-        to: "output::EgmAxes",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
-    },
-    Exception {
-        from: "controller",
-        to: "output::EgmTraceState",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
-    },
-    Exception {
-        from: "controller",
-        to: "output::PathCorrSample",
-        why: "issue 11 item 3: the controller owns the feed the outputs read",
     },
 ];
 

@@ -13,12 +13,12 @@ use crate::controller::{
     ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, MonotonicClock,
     RealtimeConfig, TickSink,
 };
-use crate::motion::RobotTime;
 use crate::output::TraceWriter;
 use crate::robot::command::{
     EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };
 use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
+use crate::time::RobotTime;
 
 use super::num;
 use super::robots::RobotArg;

@@ -2,7 +2,8 @@
 
 use std::fmt;
 
-use crate::motion::{MotionState, RobotTime};
+use crate::motion::MotionState;
+use crate::time::RobotTime;
 
 /// A condition on the motion state that a waiting program needs before it continues.
 pub enum Condition {

@@ -52,12 +52,12 @@ mod seam_correction;
 
 use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
 
+use crate::controller::sample_feed::Feed;
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
 use crate::egm::event::EgmEvent;
 use crate::egm::path_correction::{PathCorrConfig, Tracker};
 use crate::egm::registry::TrackerKind;
 use crate::egm::{CorrectionLink, DriverContext, EgmError, EgmId, EgmRegistry, EgmSource};
-use crate::output::Feed;
 use crate::robot::command::MotionCommand;
 
 use super::ControllerError;
@@ -362,7 +362,7 @@ impl PathCorr {
             })?;
         let source = EgmSource::open(&plan.source)?;
         let link = CorrectionLink::start(
-            st.setpoint.time.since_start(),
+            st.setpoint.time,
             &self.ctx,
             plan,
             source,

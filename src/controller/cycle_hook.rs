@@ -2,7 +2,8 @@
 //! session and feeding the running guidance — in both clock modes: on the motion thread in real
 //! time, on the caller's thread in virtual time.
 
-use crate::motion::{Executor, RobotTime, Setpoint};
+use crate::motion::{Executor, Setpoint};
+use crate::time::RobotTime;
 
 /// Called around every motion cycle. Runs on the real-time path: keep it short, never block
 /// for long, never panic.

@@ -37,6 +37,7 @@ use std::sync::mpsc::{self, Receiver};
 use std::sync::{Arc, PoisonError};
 use std::time::Duration;
 
+use crate::controller::sample_feed::{EgmTraceState, Feed};
 use crate::egm::registry::{
     ActJoint, ActMove, ActPose, CorrState, EgmId, EgmRegistry, EgmState, RegistryConfig, RunArgs,
     RunPlan, SetupLtapp, SetupSignals, SetupUc, StopTarget, StreamPlan,
@@ -47,7 +48,6 @@ use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
 use crate::motion::{CoreMode, ExternalGuidance, InstrRef};
-use crate::output::{EgmTraceState, Feed};
 use crate::robot::{Pose, Robot};
 use crate::signals::SignalTable;
 
@@ -766,7 +766,7 @@ impl EgmController {
                 return Err(e.into());
             }
         };
-        let now = handle.now().since_start();
+        let now = handle.now();
         let current = handle.state().setpoint.joints;
         let driver = match EgmDriver::start(now, &self.ctx, &plan, source, &current) {
             Ok(d) => d,
@@ -806,7 +806,7 @@ impl EgmController {
         plan: StreamPlan,
     ) -> Result<(), EgmFailure> {
         let started = EgmSource::open(&plan.source).and_then(|source| {
-            let now = handle.now().since_start();
+            let now = handle.now();
             let current = handle.state().setpoint.joints;
             EgmStream::start(now, &self.ctx, &plan, source, &current)
         });

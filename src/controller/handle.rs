@@ -11,10 +11,11 @@ use std::time::Duration;
 
 use crate::motion::{
     CoreMode, EnqueueError, ExternalGuidance, InstrRef, MotionCore, MotionError, MotionEvent,
-    MotionSettings, MotionState, RobotTime, Severity,
+    MotionSettings, MotionState, Severity,
 };
 use crate::robot::command::MotionCommand;
 use crate::robot::{Robot, ToolData};
+use crate::time::RobotTime;
 
 use super::condition::Condition;
 use super::cycle_hook::CycleHook;

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::motion::{Clock, RobotTime};
+use crate::time::{Clock, RobotTime};
 
 /// Robot time since the clock was created, from `std::time::Instant`.
 #[derive(Clone, Copy, Debug)]

@@ -12,10 +12,10 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
 use crate::motion::{
-    Clock, Executor, ExternalGuidance, InstrRef, MotionError, MotionEvent, MotionState, RobotTime,
-    Setpoint,
+    Executor, ExternalGuidance, InstrRef, MotionError, MotionEvent, MotionState, Setpoint,
 };
 use crate::robot::ToolData;
+use crate::time::{Clock, RobotTime};
 
 use super::cycle_hook::CycleHook;
 use super::monotonic_clock::MonotonicClock;

@@ -16,13 +16,14 @@ use std::time::Duration;
 
 use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAreaMode, no_robot};
 use crate::interp::{Host, HostError, VirtualHost};
-use crate::motion::{MotionEvent, MotionState, RobotTime, SingArea};
+use crate::motion::{MotionEvent, MotionState, SingArea};
 use crate::robot::command::{EXTAX_NONE, MotionCommand, RobTarget};
 use crate::robot::{
     JointsDeg, Pose, ToolData, WobjData, flange_target, pose_to_pos_quat, target_from_flange,
 };
 use crate::signals::SignalTable;
 use crate::source::SourceMap;
+use crate::time::RobotTime;
 
 use super::ControllerError;
 use super::condition::Condition;
@@ -55,7 +56,7 @@ pub struct ControllerHost {
     /// Virtual time: where the program's clock stands (s). A `WaitTime` ends at its exact
     /// deadline while the robot's clock moves in whole motion cycles, so the program's clock
     /// may be ahead of the robot's by less than one cycle.
-    program_time: f64,
+    program_time: RobotTime,
     /// The EGM side (`None`: EGM instructions are not supported).
     egm: Option<EgmController>,
     /// What the last move handed to the controller was (EGM movements need a stop point).
@@ -91,7 +92,7 @@ impl ControllerHost {
             errors: Vec::new(),
             max_time: None,
             lines: None,
-            program_time: 0.0,
+            program_time: RobotTime::ZERO,
             egm: None,
             last_move: LastMove::None,
             stop: None,
@@ -295,33 +296,37 @@ fn motion_changed(a: &MotionState, b: &MotionState) -> bool {
 }
 
 impl Host for ControllerHost {
-    fn now(&self) -> f64 {
-        let robot = self.ctl.as_ref().map_or(0.0, |c| c.time().as_secs_f64());
+    fn now(&self) -> RobotTime {
+        let robot = self.ctl.as_ref().map_or(RobotTime::ZERO, |c| c.time());
         robot.max(self.program_time)
     }
 
     /// Runs the robot until `deadline`, or until the motion state changes (a move ends or
     /// starts, the robot stops), whichever comes first.
-    fn wait_until(&mut self, deadline: f64) -> Result<f64, HostError> {
-        let (target, beyond_limit) = match self.max_time {
-            Some(max) if deadline > max => (max, true),
-            _ => (deadline, false),
+    fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError> {
+        let (target, limit) = match self.max_time {
+            Some(max) if deadline > RobotTime::from_secs_f64(max) => {
+                (RobotTime::from_secs_f64(max), Some(max))
+            }
+            _ => (deadline, None),
         };
         let start = self.state_checked()?;
         let now = self.now();
         if self.stop_requested() {
             return Ok(now);
         }
-        if beyond_limit && now >= target {
+        if let Some(max) = limit
+            && now >= target
+        {
             let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
             return Err(HostError::fatal(if realtime || self.outside_inputs {
                 format!(
-                    "the program waits beyond the time limit of {target} s \
+                    "the program waits beyond the time limit of {max} s \
                      (use --max-time to raise it)"
                 )
             } else {
                 format!(
-                    "the program waits beyond the virtual time limit of {target} s \
+                    "the program waits beyond the virtual time limit of {max} s \
                      (nothing in a virtual run can end this wait; use --max-time to raise it)"
                 )
             }));
@@ -331,7 +336,7 @@ impl Host for ControllerHost {
         }
         let stop = self.stop.clone();
         let ctl = self.ctl()?;
-        let until = RobotTime::from_secs_f64(target);
+        let until = target;
         // Virtual time stops on the last cycle at or before the deadline (the program's clock
         // then jumps to it); real time on the first cycle at or after it.
         let lead = if ctl.is_realtime() {

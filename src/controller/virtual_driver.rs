@@ -4,9 +4,8 @@
 
 use std::time::Duration;
 
-use crate::motion::{
-    MotionCore, MotionEvent, RobotTime, Setpoint, VirtualClock, VirtualClockHandle,
-};
+use crate::motion::{MotionCore, MotionEvent, Setpoint};
+use crate::time::{RobotTime, VirtualClock, VirtualClockHandle};
 
 use super::cycle_hook::CycleHook;
 use super::tick_sink::TickSink;

@@ -26,6 +26,7 @@ use super::types::{
     SensorReference, Target,
 };
 use crate::robot::units::{quat_from_euler_zyx_deg, quat_to_euler_zyx_deg, quat_to_wxyz};
+use crate::time::RobotTime;
 
 /// Sanity bound for angles (degrees) when no robot limits are configured.
 pub const SANITY_ABS_DEGREES: f64 = 1.0e5;
@@ -148,7 +149,7 @@ pub fn decode_reference(
     mode: EgmMode,
     previous: &Pose,
     limits: &ReferenceLimits,
-    received_at: Duration,
+    received_at: RobotTime,
 ) -> Result<SensorReference, DecodeError> {
     match mode {
         EgmMode::Joint | EgmMode::Pose => {
@@ -681,43 +682,20 @@ fn fill_pose(slot: &mut Option<EgmPose>, pose: &Pose, opts: &EncodeOptions) {
     });
 }
 
-/// `EgmClock` of a time since the clock's epoch.
-pub fn clock(t: Duration) -> EgmClock {
-    let (sec, usec) = units::sec_usec(t);
+/// `EgmClock` of a robot time (the conversion is [`RobotTime::egm_clock`]).
+pub fn clock(t: RobotTime) -> EgmClock {
+    let (sec, usec) = t.egm_clock();
     EgmClock { sec, usec }
 }
 
 /// The time an `EgmClock` stands for, since the clock's epoch (saturating).
 pub fn clock_to_duration(c: &EgmClock) -> Duration {
-    units::from_sec_usec(c.sec, c.usec)
+    crate::time::duration_from_egm_clock(c.sec, c.usec)
 }
 
-/// `header.tm` for a session time: milliseconds, wrapping at 2^32.
-pub fn header_tm(now: Duration) -> u32 {
-    units::wrapping_ms(now)
-}
-
-/// Time conversions of the EGM wire format (`EgmClock` sec/usec, `header.tm` ms).
-///
-/// Angle and length conversions come from [`crate::robot::units`]; these time conversions
-/// are the EGM layer's only other unit conversions and may move there at merge.
-pub(crate) mod units {
-    use std::time::Duration;
-
-    /// Whole seconds and the remaining microseconds.
-    pub(crate) fn sec_usec(t: Duration) -> (u64, u64) {
-        (t.as_secs(), u64::from(t.subsec_micros()))
-    }
-
-    /// Seconds plus microseconds as a duration (saturating on overflow).
-    pub(crate) fn from_sec_usec(sec: u64, usec: u64) -> Duration {
-        Duration::from_secs(sec).saturating_add(Duration::from_micros(usec))
-    }
-
-    /// Milliseconds modulo 2^32.
-    pub(crate) fn wrapping_ms(t: Duration) -> u32 {
-        (t.as_millis() % (1u128 << 32)) as u32
-    }
+/// `header.tm` of a controller message (the conversion is [`RobotTime::wire_ms`]).
+pub fn header_tm(now: RobotTime) -> u32 {
+    now.wire_ms()
 }
 
 #[cfg(test)]

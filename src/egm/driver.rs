@@ -15,8 +15,8 @@
 //! EGMStop  → driver.stop(mode, ramp_out)    program stop → driver.halt()
 //! ```
 //!
-//! `now` is the controller's clock (real or virtual) as a [`Duration`] since its start
-//! (`RobotTime::since_start()`); it becomes `header.tm` and the `EgmClock`s.
+//! `now` is the controller's clock (real or virtual), a [`RobotTime`]; it becomes
+//! `header.tm` and the `EgmClock`s.
 //!
 //! # Per tick
 //!
@@ -87,6 +87,7 @@ use crate::egm::types::{
 };
 use crate::robot::{Pose, Robot, ToolData, WobjData};
 use crate::signals::{SignalId, SignalTable};
+use crate::time::RobotTime;
 
 mod corrections;
 mod delay;
@@ -188,7 +189,7 @@ enum Link {
     /// Signals, sampled every `period`.
     Signals {
         source: SignalSource,
-        next_sample: Duration,
+        next_sample: RobotTime,
         samples: u32,
     },
 }
@@ -236,7 +237,7 @@ pub struct EgmDriver {
     log: LogRing,
     pending: Option<LogRow>,
     awaiting: bool,
-    now: Duration,
+    now: RobotTime,
     do_to_sensor: Option<SignalId>,
     di_from_sensor: Option<SignalId>,
     out_of_bounds: bool,
@@ -253,7 +254,7 @@ impl EgmDriver {
     /// ([`EgmError::BadDevice`]). On error the registry must hear
     /// [`crate::egm::EgmRegistry::run_finished`] with `ok = false`.
     pub fn start(
-        now: Duration,
+        now: RobotTime,
         ctx: &DriverContext,
         plan: &RunPlan,
         source: EgmSource,
@@ -558,7 +559,7 @@ impl EgmDriver {
 
     /// One motion tick at `now`; `current` are the joints commanded last (normally the
     /// previous tick's `joints_cmd`), used as the IK seed.
-    pub fn tick(&mut self, now: Duration, current: &Joints) -> EgmTick {
+    pub fn tick(&mut self, now: RobotTime, current: &Joints) -> EgmTick {
         self.now = now;
         if self.outcome.is_some() {
             return self.idle_tick(None);
@@ -634,7 +635,7 @@ impl EgmDriver {
     }
 
     /// Step 1: what arrived, and whether the comm time-out expired.
-    fn receive(&mut self, now: Duration) -> (Option<Incoming>, bool) {
+    fn receive(&mut self, now: RobotTime) -> (Option<Incoming>, bool) {
         let half = self.tick_period / 2;
         match &mut self.link {
             Link::Session { session, peer, .. } => {

@@ -49,8 +49,6 @@ mod pose_frames;
 mod signal_sources;
 mod speed_refs;
 
-use std::fmt;
-
 use crate::robot::KinError;
 use crate::signals::{IoError, SignalKind};
 
@@ -62,58 +60,7 @@ pub use speed_refs::{SpeedRef, SpeedRefLimit, tcp_jacobian};
 /// Number of Cartesian directions (x, y, z, rx, ry, rz) and of robot axes.
 pub const DIRECTIONS: usize = 6;
 
-/// `egmframetype`: what a correction or sensor frame is relative to. The numbers are those of
-/// rapidvc's `stdlib/egm.sys` (`EGM_FRAME_BASE` = 1 … `EGM_FRAME_JOINT` = 5).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u8)]
-pub enum EgmFrameType {
-    /// `EGM_FRAME_BASE`: relative to the robot base frame.
-    Base = 1,
-    /// `EGM_FRAME_TOOL`: relative to tool0 (the flange) at the start of the EGM movement.
-    Tool = 2,
-    /// `EGM_FRAME_WOBJ`: relative to the active work object (`\WObj`).
-    Wobj = 3,
-    /// `EGM_FRAME_WORLD`: relative to the world frame.
-    World = 4,
-    /// `EGM_FRAME_JOINT`: joint values (joint mode only; not a pose frame).
-    Joint = 5,
-}
-
-impl EgmFrameType {
-    /// The RAPID value (`stdlib/egm.sys`).
-    pub const fn value(self) -> u8 {
-        self as u8
-    }
-
-    /// The frame type of a RAPID `egmframetype` value; `None` unless it is exactly 1…5.
-    pub fn from_value(v: f64) -> Option<EgmFrameType> {
-        const ALL: [EgmFrameType; 5] = [
-            EgmFrameType::Base,
-            EgmFrameType::Tool,
-            EgmFrameType::Wobj,
-            EgmFrameType::World,
-            EgmFrameType::Joint,
-        ];
-        ALL.into_iter().find(|t| f64::from(t.value()) == v)
-    }
-
-    /// The RAPID constant's name, e.g. `EGM_FRAME_WORLD`.
-    pub const fn rapid_name(self) -> &'static str {
-        match self {
-            EgmFrameType::Base => "EGM_FRAME_BASE",
-            EgmFrameType::Tool => "EGM_FRAME_TOOL",
-            EgmFrameType::Wobj => "EGM_FRAME_WOBJ",
-            EgmFrameType::World => "EGM_FRAME_WORLD",
-            EgmFrameType::Joint => "EGM_FRAME_JOINT",
-        }
-    }
-}
-
-impl fmt::Display for EgmFrameType {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.rapid_name())
-    }
-}
+pub use crate::egm_args::EgmFrameType;
 
 /// Why a guidance computation or setup failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -24,9 +24,9 @@
 //! `pop_log()` after a tick and hands them to an [`EgmLogWriter`] on a thread that may
 //! block on the file (or writes them directly when it runs in virtual time).
 
+use crate::time::RobotTime;
 use std::collections::VecDeque;
 use std::io::Write;
-use std::time::Duration;
 
 /// The CSV header.
 pub const LOG_COLUMNS: [&str; 19] = [
@@ -85,9 +85,9 @@ pub struct LogRow {
     /// What produced it.
     pub kind: LogKind,
     /// When the message was sent.
-    pub send_time: Duration,
+    pub send_time: RobotTime,
     /// When its reply arrived.
-    pub recv_time: Option<Duration>,
+    pub recv_time: Option<RobotTime>,
     /// `header.seqno` (or sample number).
     pub seqno: u32,
     /// The reply's reference (see the module docs for units).
@@ -218,7 +218,8 @@ impl<W: Write> EgmLogWriter<W> {
 }
 
 /// Seconds with microsecond resolution.
-fn secs(d: Duration) -> String {
+fn secs(t: RobotTime) -> String {
+    let d = t.since_start();
     format!("{}.{:06}", d.as_secs(), d.subsec_micros())
 }
 
@@ -236,10 +237,10 @@ mod tests {
     fn row(seqno: u32) -> LogRow {
         LogRow {
             kind: LogKind::Joint,
-            send_time: Duration::from_micros(4_000 * u64::from(seqno) + 1),
+            send_time: RobotTime::from_nanos(1_000 * (4_000 * u64::from(seqno) + 1)),
             recv_time: seqno
                 .is_multiple_of(2)
-                .then(|| Duration::from_millis(4 * u64::from(seqno) + 1)),
+                .then(|| RobotTime::from_millis(4 * u64::from(seqno) + 1)),
             seqno,
             reference: seqno
                 .is_multiple_of(2)

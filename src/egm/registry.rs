@@ -76,43 +76,7 @@ pub use plan::{
 /// Most EGM identities reserved at a time in one RAPID task.
 pub const MAX_IDENTITIES: usize = 4;
 
-/// `egmstate`, with the numbers of `stdlib/egm.sys`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum EgmState {
-    /// `EGM_STATE_DISCONNECTED` (1): no setup.
-    Disconnected = 1,
-    /// `EGM_STATE_CONNECTED` (2): set up, no EGM movement.
-    Connected = 2,
-    /// `EGM_STATE_RUNNING` (3): an EGM movement or stream is active.
-    Running = 3,
-}
-
-impl EgmState {
-    /// The RAPID value.
-    pub fn value(self) -> f64 {
-        f64::from(self as u8)
-    }
-}
-
-/// `egmcorrstate` (RW7.15), with the numbers of `stdlib/egm.sys`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum CorrState {
-    /// `EGM_CORR_UNDEFINED` (0): not reserved.
-    Undefined = 0,
-    /// `EGM_CORR_ERROR` (1): the last EGM movement ended with an error.
-    Error = 1,
-    /// `EGM_CORR_STOPPED` (2): no EGM movement moves the robot.
-    Stopped = 2,
-    /// `EGM_CORR_RUNNING` (3): EGM moves the robot.
-    Running = 3,
-}
-
-impl CorrState {
-    /// The RAPID value.
-    pub fn value(self) -> f64 {
-        f64::from(self as u8)
-    }
-}
+pub use crate::egm_args::{CorrState, EgmState};
 
 /// A reserved identity: a slot and the reservation's generation, so an identity released by
 /// EGMReset is never mistaken for a later one in the same slot.

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use prost::Message;
 
-use super::convert::{clock_to_duration, header_tm};
+use super::convert::clock_to_duration;
 use super::latency::LatencyHistogram;
 use super::proto::{
     EgmCartesian, EgmCartesianSpeed, EgmHeader, EgmJoints, EgmPathCorr, EgmPlanned, EgmPose,
@@ -367,7 +367,7 @@ impl BuiltinSensor {
         let header = |mtype: MessageType| {
             Some(EgmHeader {
                 seqno: Some(self.seqno),
-                tm: Some(header_tm(now)),
+                tm: Some(crate::time::wire_ms(now)),
                 mtype: Some(mtype as i32),
             })
         };

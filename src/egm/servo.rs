@@ -68,36 +68,7 @@ pub const MIN_PERIOD: Duration = Duration::from_micros(100);
 /// Longest servo delay.
 pub const MAX_SERVO_DELAY: Duration = Duration::from_secs(1);
 
-/// An `egm_minmax` convergence window: converged when min ≤ ordered − actual ≤ max.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MinMax {
-    /// Lower bound.
-    pub min: f64,
-    /// Upper bound.
-    pub max: f64,
-}
-
-impl MinMax {
-    /// The default joint window, ±0.5 degrees.
-    pub const JOINT_DEFAULT: MinMax = MinMax {
-        min: -0.5,
-        max: 0.5,
-    };
-
-    /// True when `error` lies inside the window.
-    pub fn contains(&self, error: f64) -> bool {
-        error >= self.min && error <= self.max
-    }
-}
-
-/// How an EGM run ends (`egmstopmode`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StopMode {
-    /// `EGM_STOP_HOLD`: stay at the end position.
-    Hold,
-    /// `EGM_STOP_RAMP_DOWN`: return to the start position within the ramp-out time.
-    RampDown,
-}
+pub use crate::egm_args::{MinMax, StopMode};
 
 /// Parameters of one EGM run (EGMAct*, EGMRun*, the motion profile and rapidvc options).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,8 +7,8 @@
 //! 3. sends what [`EgmSession::poll_transmit`] returns, and
 //! 4. sleeps until [`EgmSession::poll_timeout`], calling [`EgmSession::handle_timeout`].
 //!
-//! Time is a [`Duration`] since an arbitrary origin chosen by the caller (the controller's
-//! clock, real or virtual); `header.tm` is that time in milliseconds, wrapping at 2^32.
+//! Time is the controller's [`RobotTime`] (real or virtual), handed in by the caller;
+//! `header.tm` is that time in milliseconds, wrapping at 2^32.
 //!
 //! **Queue policy.** The default, [`QueuePolicy::Newest`], drains everything that arrived and
 //! uses the newest valid message; older ones are counted as `superseded`. This keeps latency
@@ -37,6 +37,7 @@ use super::event::{EgmEvent, EventKind};
 use super::latency::{LatencyHistogram, fmt_duration};
 use super::proto::EgmRobot;
 use super::types::{EgmMode, Pose, RobotFeedback, SensorReference, Target};
+use crate::time::RobotTime;
 
 /// Largest datagram rapidvc sends, and by default accepts (the clients' receive buffers).
 pub const MAX_DATAGRAM_LEN: usize = 1024;
@@ -226,7 +227,7 @@ impl EgmStats {
 /// Per-kind event rate limiting.
 #[derive(Clone, Copy, Debug, Default)]
 struct Throttle {
-    last: Option<Duration>,
+    last: Option<RobotTime>,
     suppressed: u64,
 }
 
@@ -247,9 +248,9 @@ pub struct EgmSession {
     config: EgmConfig,
     state: SessionState,
     seqno: u32,
-    next_transmit: Duration,
-    last_transmit: Option<Duration>,
-    comm_timer_start: Duration,
+    next_transmit: RobotTime,
+    last_transmit: Option<RobotTime>,
+    comm_timer_start: RobotTime,
     timed_out: bool,
     queue: VecDeque<SensorReference>,
     latest: Option<SensorReference>,
@@ -291,9 +292,9 @@ impl EgmSession {
             config,
             state: SessionState::Idle,
             seqno: 0,
-            next_transmit: Duration::ZERO,
+            next_transmit: RobotTime::ZERO,
             last_transmit: None,
-            comm_timer_start: Duration::ZERO,
+            comm_timer_start: RobotTime::ZERO,
             timed_out: false,
             queue: VecDeque::with_capacity(capacity + 1),
             latest: None,
@@ -325,7 +326,7 @@ impl EgmSession {
 
     /// Starts a session at `now`: seqno restarts at 0, the first datagram is due at once, the
     /// comm timer starts, queued and current references are forgotten.
-    pub fn start(&mut self, now: Duration) {
+    pub fn start(&mut self, now: RobotTime) {
         self.state = SessionState::Running;
         self.seqno = 0;
         self.next_transmit = now;
@@ -414,7 +415,7 @@ impl EgmSession {
     }
 
     /// When the session next needs attention: the next transmit or the comm time-out.
-    pub fn poll_timeout(&self) -> Option<Duration> {
+    pub fn poll_timeout(&self) -> Option<RobotTime> {
         if !self.is_running() {
             return None;
         }
@@ -431,7 +432,7 @@ impl EgmSession {
 
     /// Processes timers: raises 41822 once when no valid sensor data came within the comm
     /// time-out.
-    pub fn handle_timeout(&mut self, now: Duration) {
+    pub fn handle_timeout(&mut self, now: RobotTime) {
         if !self.is_running() || self.timed_out {
             return;
         }
@@ -451,7 +452,7 @@ impl EgmSession {
 
     /// Builds the `EgmRobot` due at `now`, or `None` when none is due (or the session is not
     /// running, or the feedback is not finite).
-    pub fn poll_transmit(&mut self, now: Duration, feedback: &RobotFeedback) -> Option<Vec<u8>> {
+    pub fn poll_transmit(&mut self, now: RobotTime, feedback: &RobotFeedback) -> Option<Vec<u8>> {
         let mut buf = Vec::with_capacity(512);
         self.poll_transmit_into(now, feedback, &mut buf)
             .then_some(buf)
@@ -461,7 +462,7 @@ impl EgmSession {
     /// reuse one buffer; returns whether a datagram was produced.
     pub fn poll_transmit_into(
         &mut self,
-        now: Duration,
+        now: RobotTime,
         feedback: &RobotFeedback,
         buf: &mut Vec<u8>,
     ) -> bool {
@@ -514,13 +515,13 @@ impl EgmSession {
         true
     }
 
-    fn advance_schedule(&mut self, now: Duration) {
+    fn advance_schedule(&mut self, now: RobotTime) {
         let period = self.config.sample_period;
         let half = period / 2;
         self.next_transmit = self.next_transmit.saturating_add(period);
         if self.next_transmit.saturating_add(half) <= now {
             // Called more than a cycle late: count the skipped cycles and re-phase.
-            let behind = now.saturating_sub(self.next_transmit);
+            let behind = now.saturating_since(self.next_transmit);
             let skipped = behind.as_nanos() / period.as_nanos().max(1) + 1;
             self.stats.late_cycles += u64::try_from(skipped).unwrap_or(u64::MAX);
             self.next_transmit = now.saturating_add(period);
@@ -529,7 +530,7 @@ impl EgmSession {
 
     /// Handles one datagram from `src` that arrived at `now`. Never panics; every drop is
     /// counted and reported (rate-limited) as an event.
-    pub fn handle_datagram(&mut self, now: Duration, src: SocketAddr, bytes: &[u8]) -> Outcome {
+    pub fn handle_datagram(&mut self, now: RobotTime, src: SocketAddr, bytes: &[u8]) -> Outcome {
         self.stats.received += 1;
         if !self.is_running() {
             self.count_drop(DropReason::Late);
@@ -602,10 +603,10 @@ impl EgmSession {
         }
     }
 
-    fn accept(&mut self, now: Duration, reference: SensorReference) {
+    fn accept(&mut self, now: RobotTime, reference: SensorReference) {
         self.stats.accepted += 1;
         if let Some(sent) = self.last_transmit {
-            self.stats.turnaround.record(now.saturating_sub(sent));
+            self.stats.turnaround.record(now.saturating_since(sent));
         }
         self.comm_timer_start = now;
         self.latest = Some(reference);
@@ -632,7 +633,7 @@ impl EgmSession {
 
     /// Emits an event of a throttled kind: the first at once, then at most one per
     /// `event_repeat` carrying the number of suppressed ones.
-    fn report(&mut self, kind: EventKind, now: Duration, detail: String) {
+    fn report(&mut self, kind: EventKind, now: RobotTime, detail: String) {
         let Some(index) = THROTTLED.iter().position(|k| *k == kind) else {
             self.push_event(EgmEvent::new(kind, detail));
             return;
@@ -643,7 +644,7 @@ impl EgmSession {
         };
         let due = slot
             .last
-            .is_none_or(|last| now.saturating_sub(last) >= repeat);
+            .is_none_or(|last| now.saturating_since(last) >= repeat);
         if !due {
             slot.suppressed += 1;
             return;

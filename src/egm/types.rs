@@ -1,6 +1,6 @@
 //! Plain domain data exchanged over EGM: joints, poses, references and robot feedback (mm, degrees).
 
-use std::time::Duration;
+use crate::time::RobotTime;
 
 /// Number of robot axes rapidvc's EGM layer handles (a 6-axis TCP robot).
 pub const ROBOT_AXES: usize = 6;
@@ -13,26 +13,7 @@ pub const MAX_RAPID_DNUM: usize = 40;
 /// type as [`crate::robot::JointsDeg`].
 pub type Joints = crate::robot::JointsDeg;
 
-/// Which message the sensor sends, chosen by the EGM setup (`\Joint`, `\Pose`, `\PathCorr`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum EgmMode {
-    /// Position guidance in joint space: `EgmSensor.planned.joints`.
-    Joint,
-    /// Position guidance in Cartesian space: `EgmSensor.planned.cartesian`.
-    Pose,
-    /// Path correction: `EgmSensorPathCorr.pathCorr`.
-    PathCorr,
-}
-
-impl std::fmt::Display for EgmMode {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            EgmMode::Joint => "joint",
-            EgmMode::Pose => "pose",
-            EgmMode::PathCorr => "path correction",
-        })
-    }
-}
+pub use crate::egm_args::EgmMode;
 
 /// A Cartesian pose: position in mm and a unit quaternion `[w, x, y, z]` (w is the scalar).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -206,8 +187,8 @@ pub enum Target {
 /// One accepted, validated sensor message.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SensorReference {
-    /// When the datagram arrived (session time).
-    pub received_at: Duration,
+    /// When the datagram arrived (robot time).
+    pub received_at: RobotTime,
     /// The sensor's header fields.
     pub header: SensorHeader,
     /// The reference itself.
@@ -254,8 +235,8 @@ pub struct RobotFeedback {
     pub external: ExternalAxes,
     /// Measured TCP pose (mm, quaternion) in the frame the EGM setup reports in.
     pub pose: Pose,
-    /// When the axes were at `joints` (sent as `feedBack.time`), since the clock's epoch.
-    pub time: Duration,
+    /// When the axes were at `joints` (sent as `feedBack.time`).
+    pub time: RobotTime,
     /// Planned (commanded) joints, degrees.
     pub planned_joints: Joints,
     /// Planned additional axes.
@@ -263,7 +244,7 @@ pub struct RobotFeedback {
     /// Planned TCP pose.
     pub planned_pose: Pose,
     /// When the axes will be at the planned position (sent as `planned.time`).
-    pub planned_time: Duration,
+    pub planned_time: RobotTime,
     /// Drive state.
     pub motor_state: MotorState,
     /// Program state.
@@ -288,11 +269,11 @@ impl RobotFeedback {
             joints,
             external: ExternalAxes::NONE,
             pose,
-            time: Duration::ZERO,
+            time: RobotTime::ZERO,
             planned_joints: joints,
             planned_external: ExternalAxes::NONE,
             planned_pose: pose,
-            planned_time: Duration::ZERO,
+            planned_time: RobotTime::ZERO,
             motor_state: MotorState::On,
             exec_state: RapidExecState::Running,
             mci_state: MciState::Running,

@@ -24,6 +24,7 @@ use super::value::{MAX_STRING, Value};
 use super::{Interp, NArg};
 use crate::ir::{NativeId, NativeSig, Program};
 use crate::source::Span;
+use crate::time::RobotTime;
 
 /// A native routine: reads its arguments from the context, returns the function result
 /// (`Value::Absent` for instructions).
@@ -328,9 +329,14 @@ impl<'a> Ctx<'a> {
         self.it.host_error(e, self.span)
     }
 
-    /// Current time (seconds).
-    pub fn now(&self) -> f64 {
+    /// The current robot time.
+    pub fn now(&self) -> RobotTime {
         self.it.host.now()
+    }
+
+    /// The current robot time in seconds (a RAPID `num`, e.g. for `ClkRead`).
+    pub fn now_secs(&self) -> f64 {
+        self.it.host.now().as_secs_f64()
     }
 
     /// Wait (in host time, running traps as interrupts arrive) until `cond` holds, polling it
@@ -338,7 +344,7 @@ impl<'a> Ctx<'a> {
     /// wait for the controller (the robot standing still, an EGM movement converging).
     pub fn wait_host(
         &mut self,
-        deadline: Option<f64>,
+        deadline: Option<RobotTime>,
         poll: f64,
         mut cond: impl FnMut(&mut dyn Host) -> Result<bool, super::HostError>,
     ) -> Exec<bool> {

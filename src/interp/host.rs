@@ -42,6 +42,7 @@ use super::errnum;
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 use crate::signals::{IoError, SignalTable};
+use crate::time::RobotTime;
 
 mod egm_host;
 mod egm_path_host;
@@ -184,13 +185,14 @@ pub fn no_robot() -> HostError {
 
 /// Everything the interpreter needs from the controller.
 pub trait Host {
-    /// Current time in seconds since the program started.
-    fn now(&self) -> f64;
+    /// The current robot time (the controller's clock; the program started at or after its
+    /// start).
+    fn now(&self) -> RobotTime;
 
-    /// Let time pass until `deadline` (seconds, same clock as [`Host::now`]) or until
-    /// something outside the program may have changed (a signal, a message), whichever comes
-    /// first; returns the new current time. A virtual host jumps straight to the deadline.
-    fn wait_until(&mut self, deadline: f64) -> Result<f64, HostError>;
+    /// Let time pass until `deadline` (same clock as [`Host::now`]) or until something
+    /// outside the program may have changed (a signal, a message), whichever comes first;
+    /// returns the new current time. A virtual host jumps straight to the deadline.
+    fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError>;
 
     /// Deliver program output (TP lines, event-log entries).
     fn output(&mut self, out: Output);
@@ -287,7 +289,7 @@ pub type OutputSink = Box<dyn FnMut(&Output) + Send>;
 /// A deterministic host: a virtual clock that jumps, output kept in memory (or handed to a
 /// callback), signals in a shared [`SignalTable`].
 pub struct VirtualHost {
-    now: f64,
+    now: RobotTime,
     max_time: Option<f64>,
     outputs: Vec<Output>,
     sink: Option<OutputSink>,
@@ -313,7 +315,7 @@ impl VirtualHost {
     /// Time 0, no time limit, output kept in memory, the built-in signals.
     pub fn new() -> Self {
         VirtualHost {
-            now: 0.0,
+            now: RobotTime::ZERO,
             max_time: None,
             outputs: Vec::new(),
             sink: None,
@@ -362,19 +364,19 @@ impl VirtualHost {
     }
 
     /// Move the clock (tests).
-    pub fn set_time(&mut self, t: f64) {
+    pub fn set_time(&mut self, t: RobotTime) {
         self.now = t;
     }
 }
 
 impl Host for VirtualHost {
-    fn now(&self) -> f64 {
+    fn now(&self) -> RobotTime {
         self.now
     }
 
-    fn wait_until(&mut self, deadline: f64) -> Result<f64, HostError> {
+    fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError> {
         if let Some(max) = self.max_time
-            && deadline > max
+            && deadline > RobotTime::from_secs_f64(max)
         {
             return Err(HostError::fatal(format!(
                 "the program waits beyond the virtual time limit of {max} s \

@@ -2,6 +2,7 @@
 //! between statements and during waits.
 
 use std::collections::{HashMap, HashSet, VecDeque};
+use std::time::Duration;
 
 use super::Interp;
 use super::errnum;
@@ -9,6 +10,7 @@ use super::error::{Exec, Unwind};
 use super::value::Value;
 use crate::ir::{Place, Program, RoutineId};
 use crate::source::Span;
+use crate::time::{RobotTime, secs};
 
 /// A condition a wait polls.
 pub(crate) type WaitCond<'a> = dyn FnMut(&mut Interp, &Program) -> Exec<bool> + 'a;
@@ -22,8 +24,8 @@ const MAX_PENDING: usize = 30;
 #[derive(Debug, Clone)]
 pub(crate) struct Timer {
     pub intno: i32,
-    pub period: f64,
-    pub next: f64,
+    pub period: Duration,
+    pub next: RobotTime,
     pub single: bool,
 }
 
@@ -60,7 +62,7 @@ pub(crate) struct Interrupts {
     pub asleep: HashSet<i32>,
     in_trap: bool,
     /// Signal writes due later (`\SDelay`, the end of a `PulseDO`): (time, signal, value).
-    delayed: Vec<(f64, String, f64)>,
+    delayed: Vec<(RobotTime, String, f64)>,
 }
 
 impl Interrupts {
@@ -78,12 +80,12 @@ impl Interrupts {
     }
 
     /// Earliest timer deadline.
-    pub fn next_timer(&self) -> Option<f64> {
+    pub fn next_timer(&self) -> Option<RobotTime> {
         self.timers
             .iter()
             .map(|t| t.next)
             .chain(self.delayed.iter().map(|d| d.0))
-            .reduce(f64::min)
+            .min()
     }
 
     /// Remove an interrupt number and all its orders.
@@ -173,11 +175,12 @@ impl Interp {
     ) -> Exec<()> {
         self.check_intno(no, span)?;
         let now = self.host.now();
+        let period = secs(period);
         self.ints.timers.retain(|t| t.intno != no);
         self.ints.timers.push(Timer {
             intno: no,
             period,
-            next: now + period,
+            next: now.saturating_add(period),
             single,
         });
         self.update_poll();
@@ -217,7 +220,7 @@ impl Interp {
     }
 
     /// Write a signal at a later (host) time.
-    pub(crate) fn schedule_write(&mut self, at: f64, signal: String, value: f64) {
+    pub(crate) fn schedule_write(&mut self, at: RobotTime, signal: String, value: f64) {
         self.ints.delayed.push((at, signal, value));
         self.update_poll();
     }
@@ -227,7 +230,7 @@ impl Interp {
     pub(crate) fn service_interrupts(&mut self, p: &Program, span: Span) -> Exec<()> {
         let now = self.host.now();
         if !self.ints.delayed.is_empty() {
-            let mut due: Vec<(f64, String, f64)> = Vec::new();
+            let mut due: Vec<(RobotTime, String, f64)> = Vec::new();
             self.ints.delayed.retain(|d| {
                 if d.0 <= now {
                     due.push(d.clone());
@@ -236,7 +239,7 @@ impl Interp {
                     true
                 }
             });
-            due.sort_by(|a, b| a.0.total_cmp(&b.0));
+            due.sort_by_key(|d| d.0);
             for (_, sig, v) in due {
                 self.host
                     .write_signal(&sig, v)
@@ -250,9 +253,9 @@ impl Interp {
                 if t.single {
                     return false;
                 }
-                t.next += t.period;
+                t.next = t.next.saturating_add(t.period);
                 if t.next <= now {
-                    t.next = now + t.period;
+                    t.next = now.saturating_add(t.period);
                 }
             }
             true
@@ -330,13 +333,13 @@ impl Interp {
         }
     }
 
-    /// Wait until `deadline` (absolute seconds) or until `cond` holds (polled every `poll`
-    /// seconds), running traps as interrupts arrive. Returns true when `cond` held.
+    /// Wait until `deadline` or until `cond` holds (polled every `poll` seconds), running
+    /// traps as interrupts arrive. Returns true when `cond` held.
     pub(crate) fn wait(
         &mut self,
         p: &Program,
         span: Span,
-        deadline: Option<f64>,
+        deadline: Option<RobotTime>,
         mut cond: Option<&mut WaitCond<'_>>,
         poll: f64,
     ) -> Exec<bool> {
@@ -359,16 +362,17 @@ impl Interp {
                 self.service_interrupts(p, span)?;
                 return Ok(false);
             }
-            let mut wake = deadline.unwrap_or(f64::INFINITY);
+            let mut wake = deadline;
             if cond.is_some() {
-                wake = wake.min(now + poll);
+                wake = Some(wake.map_or(now.after_secs(poll), |w| w.min(now.after_secs(poll))));
             }
             if let Some(t) = self.ints.next_timer() {
-                wake = wake.min(t.max(now));
+                let t = t.max(now);
+                wake = Some(wake.map_or(t, |w| w.min(t)));
             }
-            if !wake.is_finite() {
+            let Some(wake) = wake else {
                 return Err(self.fatal(super::ErrorKind::Host, span, "this wait can never end"));
-            }
+            };
             self.host
                 .wait_until(wake)
                 .map_err(|e| self.host_error(e, span))?;

@@ -6,7 +6,6 @@
 use crate::robot::command::MotionCommand;
 use crate::robot::{JointsDeg, Robot, ToolData};
 
-use super::clock::RobotTime;
 use super::correction::PathCorrection;
 use super::event::{InstrRef, MotionError, MotionEvent, Severity};
 use super::executor::Executor;
@@ -14,6 +13,7 @@ use super::external_guidance::ExternalGuidance;
 use super::planner::Planner;
 use super::settings::{CoreConfig, MotionSettings};
 use super::state::{MotionState, Setpoint};
+use crate::time::RobotTime;
 
 /// Why a command was not queued.
 #[derive(Debug, thiserror::Error)]

@@ -34,8 +34,8 @@ use nalgebra::Vector3;
 
 use crate::robot::Pose;
 
-use super::clock::RobotTime;
 use super::event::{InstrRef, MotionError};
+use crate::time::RobotTime;
 
 /// The programmed path at one corrected cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]

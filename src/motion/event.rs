@@ -7,7 +7,7 @@ use crate::robot::error::msg_num;
 use crate::robot::{ConfData, KinError};
 use crate::source::Span;
 
-use super::clock::RobotTime;
+use crate::time::RobotTime;
 
 /// Which RAPID instruction a segment, an event or a trace row belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -20,7 +20,6 @@ use nalgebra::Translation3;
 use crate::robot::{JointsDeg, Pose, Robot, ToolData};
 
 use super::brake::{Brake, fewest_steps};
-use super::clock::RobotTime;
 use super::correction::{PathCorrection, PathPoint, Track};
 use super::event::{EventLog, InstrRef, MotionError, MotionEvent, PathPlace, Severity};
 use super::external_guidance::{ExternalGuidance, GuidanceStep};
@@ -28,6 +27,7 @@ use super::limits::{self, SPEED_SUPERVISION_SLACK};
 use super::segment::{Sample, Segment};
 use super::settings::CoreConfig;
 use super::state::{CoreMode, MotionState, Setpoint};
+use crate::time::RobotTime;
 
 /// The segment being played.
 #[derive(Debug)]

@@ -5,7 +5,7 @@ use std::any::Any;
 
 use crate::robot::JointsDeg;
 
-use super::clock::RobotTime;
+use crate::time::RobotTime;
 
 /// What external guidance asks for in one cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]

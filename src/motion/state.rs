@@ -2,8 +2,8 @@
 
 use crate::robot::{JointsDeg, Pose};
 
-use super::clock::RobotTime;
 use super::event::InstrRef;
+use crate::time::RobotTime;
 
 /// The output of one motion cycle.
 #[derive(Clone, Copy, Debug, PartialEq)]

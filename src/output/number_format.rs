@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use crate::motion::RobotTime;
+use crate::time::RobotTime;
 
 /// Append `x` with `decimals` digits after the point to `out`. `-0.000` is written `0.000`,
 /// so a value that rounds to zero never shows a sign; non-finite values are written `NaN`,

@@ -1,7 +1,7 @@
 //! `--plot FILE.svg|.png`: joint angles, TCP position and TCP speed against time, with the
 //! program's move instructions marked by vertical lines and labels (`MoveL L12`), sized and
 //! coloured to be projected in a classroom. When the controller fed EGM or path-correction
-//! samples (through a [`Feed`](super::feed::Feed) subscribed with
+//! samples (through a [`Feed`](crate::controller::sample_feed::Feed) subscribed with
 //! [`PlotRecorder::with_feed`]), sections below show EGM reference against feedback and the
 //! tracking error, and the programmed, measured and corrected path in the path frame.
 
@@ -19,7 +19,7 @@ use crate::controller::TickSink;
 use crate::motion::Setpoint;
 use crate::source::SourceMap;
 
-use super::feed::{EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample};
+use crate::controller::sample_feed::{EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample};
 use panel::{Curve, Panel, Stroke, VLine};
 
 /// Picture width and the height of the joint/TCP/speed part, in pixels.
@@ -369,8 +369,8 @@ fn align<DB: DrawingBackend>(stack: &mut [(Panel<'_>, &DrawingArea<DB, Shift>)])
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::motion::RobotTime;
-    use crate::output::feed::{EgmAxes, EgmSample};
+    use crate::controller::sample_feed::{EgmAxes, EgmSample};
+    use crate::time::RobotTime;
 
     #[test]
     fn hostile_values_render_without_panicking() {

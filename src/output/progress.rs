@@ -6,8 +6,9 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::controller::TickSink;
-use crate::motion::{RobotTime, Setpoint};
+use crate::motion::Setpoint;
 use crate::source::SourceMap;
+use crate::time::RobotTime;
 
 #[derive(Debug, Default)]
 struct Counters {

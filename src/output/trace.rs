@@ -1,6 +1,6 @@
 //! `--trace FILE.csv`: one row per motion cycle with time, joints, the TCP of the active tool in
 //! world coordinates, TCP speed and the instruction being executed, optionally followed by EGM
-//! and path-correction columns fed through a [`Feed`](super::feed::Feed). Deterministic text:
+//! and path-correction columns fed through a [`Feed`](crate::controller::sample_feed::Feed). Deterministic text:
 //! the same run always gives the same bytes.
 //!
 //! # Columns
@@ -29,9 +29,12 @@ use crate::controller::TickSink;
 use crate::motion::Setpoint;
 use crate::robot::units::quat_to_wxyz;
 use crate::source::SourceMap;
+use crate::time::RobotTime;
 
-use super::feed::{EgmAxes, EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample};
 use super::number_format::{canonical_quat, push_fixed, push_time};
+use crate::controller::sample_feed::{
+    EgmAxes, EgmSample, EgmTraceState, FeedItem, FeedRx, PathCorrSample,
+};
 
 /// The header of every trace.
 pub const TRACE_HEADER: [&str; 18] = [
@@ -134,7 +137,7 @@ struct Extras {
 }
 
 impl Extras {
-    fn take(&mut self, now: crate::motion::RobotTime) {
+    fn take(&mut self, now: RobotTime) {
         self.egm = None;
         self.pathcorr = None;
         let Extras {
@@ -357,8 +360,8 @@ impl<W: Write + Send> TickSink for TraceWriter<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::motion::{InstrRef, RobotTime};
-    use crate::output::feed::Feed;
+    use crate::controller::sample_feed::Feed;
+    use crate::motion::InstrRef;
     use crate::robot::Pose;
 
     fn sp(tick: u64) -> Setpoint {

@@ -18,6 +18,7 @@ use rapidvc::egm::session::MAX_DATAGRAM_LEN;
 use rapidvc::egm::{
     EgmConfig, EgmEvent, EgmMode, EgmSession, Joints, MciState, Pose, RobotFeedback, Target,
 };
+use rapidvc::time::RobotTime;
 use rapidvc::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 
 pub const PERIOD: Duration = Duration::from_millis(4);
@@ -113,8 +114,8 @@ impl Controller {
         }
     }
 
-    pub fn now(&self) -> Duration {
-        self.origin.elapsed()
+    pub fn now(&self) -> RobotTime {
+        RobotTime::from_duration(self.origin.elapsed())
     }
 
     /// One EGM cycle: drain, take the reference, step the robot, send, sleep to the deadline.

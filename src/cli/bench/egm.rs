@@ -31,12 +31,13 @@ use crate::egm::latency::{LatencyHistogram, fmt_duration};
 use crate::egm::registry::{ActJoint, RegistryConfig, RunArgs, SetupUc};
 use crate::egm::servo::StopMode;
 use crate::egm::{DriverOptions, EgmMode, proto};
-use crate::motion::{Executor, RobotTime, Setpoint};
+use crate::motion::{Executor, Setpoint};
 use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
 use crate::robot::{Pose, Robot, ToolData, WobjData};
 use crate::signals::SignalTable;
+use crate::time::RobotTime;
 
 const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
 

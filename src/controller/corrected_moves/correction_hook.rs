@@ -5,13 +5,14 @@ use std::sync::mpsc::{Receiver, SyncSender, TryRecvError, TrySendError};
 use std::time::Duration;
 
 use crate::controller::cycle_hook::CycleHook;
+use crate::controller::sample_feed::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::egm::CorrectionLink;
 use crate::egm::driver::CorrectionInput;
 use crate::egm::event::EgmEvent;
 use crate::egm::message_log::LogRow;
-use crate::motion::{Executor, RobotTime, Setpoint};
-use crate::output::{EgmTraceState, Feed, FeedItem, PathCorrSample};
+use crate::motion::{Executor, Setpoint};
 use crate::robot::{ToolData, WobjData};
+use crate::time::RobotTime;
 
 use super::seam_correction::{SeamCorrection, rejection_kind};
 use crate::egm::path_correction::Rejection;
@@ -66,7 +67,7 @@ pub struct PathCorrHook {
     link: Option<CorrectionLink>,
     name: Arc<str>,
     dropped: u64,
-    last_rejection: Option<Duration>,
+    last_rejection: Option<RobotTime>,
     rejections_held: u32,
 }
 
@@ -114,10 +115,10 @@ impl PathCorrHook {
 
     /// The event of a rejected correction, at most one per [`REJECTION_REPEAT`] (a sensor
     /// that keeps sending bad values is reported once a second, with a count).
-    fn rejection(&mut self, now: Duration, r: &Rejection) -> Option<EgmEvent> {
+    fn rejection(&mut self, now: RobotTime, r: &Rejection) -> Option<EgmEvent> {
         if self
             .last_rejection
-            .is_some_and(|t| now.saturating_sub(t) < REJECTION_REPEAT)
+            .is_some_and(|t| now.saturating_since(t) < REJECTION_REPEAT)
         {
             self.rejections_held = self.rejections_held.saturating_add(1);
             return None;
@@ -205,7 +206,7 @@ impl CycleHook for PathCorrHook {
         let Some(mut link) = self.link.take() else {
             return;
         };
-        let now = sp.time.since_start();
+        let now = sp.time;
         let Some(seam) = exec.path_correction_as::<SeamCorrection>() else {
             self.link = Some(link);
             return;

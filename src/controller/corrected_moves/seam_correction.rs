@@ -11,8 +11,9 @@ use crate::egm::path_correction::{
     Scheduled, Tracker, look_ahead_distance,
 };
 use crate::egm::registry::TrackerKind;
-use crate::motion::{InstrRef, MotionError, PathCorrection, PathPoint, RobotTime};
+use crate::motion::{InstrRef, MotionError, PathCorrection, PathPoint};
 use crate::robot::{Pose, ToolData, WobjData};
+use crate::time::RobotTime;
 
 /// Most EGMMoveL/EGMMoveC of one sequence waiting in the motion queue at a time (the queue
 /// is shorter; older entries are forgotten once the robot has passed them).

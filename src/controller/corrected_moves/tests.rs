@@ -9,17 +9,18 @@ use nalgebra::Vector3;
 use super::*;
 use crate::config::devices::{DeviceOverride, DeviceTable};
 use crate::config::moc::MocConfig;
+use crate::controller::sample_feed::{FeedItem, FeedRx, PathCorrSample};
 use crate::controller::{ControllerConfig, TickSink};
 use crate::egm::DriverOptions;
 use crate::egm::registry::{ActMove, RegistryConfig, SetupLtapp, SetupUc};
 use crate::egm::types::EgmMode;
-use crate::motion::{RobotTime, Setpoint};
-use crate::output::{FeedItem, FeedRx, PathCorrSample};
+use crate::motion::Setpoint;
 use crate::robot::command::{
     EXTAX_NONE, MoveArgs, MoveC, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };
 use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
 use crate::signals::SignalTable;
+use crate::time::RobotTime;
 
 /// Level 2 profile "pathCorr" (the manual's MOC.cfg).
 fn moc() -> MocConfig {

@@ -12,13 +12,14 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use crate::controller::CycleHook;
+use crate::controller::sample_feed::{EgmAxes, EgmTraceState, Feed};
 use crate::egm::EgmMode;
 use crate::egm::message_log::LogRow;
 use crate::egm::registry::EgmId;
 use crate::egm::types::RapidExecState;
 use crate::egm::{EgmEvent, EgmStream};
-use crate::motion::{Executor, ExternalGuidance, RobotTime, Setpoint};
-use crate::output::{EgmAxes, EgmTraceState, Feed};
+use crate::motion::{Executor, ExternalGuidance, Setpoint};
+use crate::time::RobotTime;
 
 use super::run_guidance::EgmGuidance;
 
@@ -135,7 +136,7 @@ impl EgmHook {
         } else {
             RapidExecState::Running
         };
-        let now = sp.time.since_start();
+        let now = sp.time;
         for s in streams.iter_mut() {
             s.stream.tick(now, &sp.joints, exec);
             while let Some(e) = s.stream.poll_event() {
@@ -144,7 +145,7 @@ impl EgmHook {
             while let Some(row) = s.stream.pop_log() {
                 if let Some(feed) = &self.feed {
                     feed.push_egm_sample(
-                        RobotTime::from_duration(row.send_time),
+                        row.send_time,
                         EgmAxes::Joint,
                         None,
                         row.feedback,

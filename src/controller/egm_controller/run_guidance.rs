@@ -7,8 +7,9 @@ use std::time::Duration;
 use crate::egm::registry::EgmId;
 use crate::egm::servo::StopMode;
 use crate::egm::{EgmDriver, EgmTick};
-use crate::motion::{ExternalGuidance, GuidanceStep, RobotTime};
+use crate::motion::{ExternalGuidance, GuidanceStep};
 use crate::robot::JointsDeg;
+use crate::time::RobotTime;
 
 const NONE: u8 = 0;
 const STOP_HOLD: u8 = 1;
@@ -93,7 +94,7 @@ impl ExternalGuidance for EgmGuidance {
         if self.driver.is_finished() {
             return GuidanceStep::Finished;
         }
-        let t = self.driver.tick(now.since_start(), current);
+        let t = self.driver.tick(now, current);
         self.speed_limited |= t.speed_limited;
         let q = t.joints_cmd;
         self.last = Some(t);

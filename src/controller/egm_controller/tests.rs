@@ -17,6 +17,7 @@ use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
 use crate::robot::{JointsDeg, ToolData, WobjData};
+use crate::time::RobotTime;
 
 const START: JointsDeg = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
 
@@ -241,29 +242,27 @@ mod rapid {
     use super::*;
     use crate::diag::Diagnostics;
     use crate::interp::{Host, HostError, Interp, Output, Registry};
-    use crate::motion::RobotTime;
     use crate::source::{SourceMap, Span};
 
     struct TestHost {
         handle: ControllerHandle,
         egm: EgmController,
         signals: Arc<SignalTable>,
-        now: f64,
+        now: RobotTime,
         lines: Arc<std::sync::Mutex<Vec<String>>>,
         joints: Arc<std::sync::Mutex<JointsDeg>>,
         next_id: u64,
     }
 
     impl Host for TestHost {
-        fn now(&self) -> f64 {
+        fn now(&self) -> RobotTime {
             self.now
         }
-        fn wait_until(&mut self, deadline: f64) -> Result<f64, HostError> {
-            let t = RobotTime::from_secs_f64(deadline);
+        fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError> {
             self.handle
-                .wait_until(Condition::TimeReached(t))
+                .wait_until(Condition::TimeReached(deadline))
                 .map_err(|e| HostError::fatal(e.to_string()))?;
-            self.now = self.handle.now().as_secs_f64();
+            self.now = self.handle.now();
             *self.joints.lock().unwrap() = self.handle.state().setpoint.joints;
             Ok(self.now)
         }
@@ -321,12 +320,12 @@ mod rapid {
             handle,
             egm,
             signals: Arc::clone(&signals),
-            now: 0.0,
+            now: RobotTime::ZERO,
             lines: Arc::clone(&lines),
             joints: Arc::clone(&joints),
             next_id: 100,
         };
-        host.now = host.handle.now().as_secs_f64();
+        host.now = host.handle.now();
         let mut sources = SourceMap::new();
         let mut diags = Diagnostics::new();
         let id = sources.add("t.mod", text);
@@ -338,7 +337,7 @@ mod rapid {
         let r = it.run("main").map(drop).map_err(|e| e.message.clone());
         let stopped = it.host_mut().egm().unwrap().egm_program_stopped();
         assert!(stopped.is_ok() || r.is_err(), "{stopped:?}");
-        let t = it.host().now() + 0.004;
+        let t = it.host().now().after_secs(0.004);
         it.host_mut().wait_until(t).unwrap();
         let lines = lines.lock().unwrap().clone();
         let q = *joints.lock().unwrap();

@@ -43,6 +43,12 @@ fn z50() -> ZoneData {
     }
 }
 
+/// `Host::wait_until` with the deadline and the answer in seconds.
+fn wait_secs(h: &mut ControllerHost, deadline: f64) -> Result<f64, HostError> {
+    h.wait_until(RobotTime::from_secs_f64(deadline))
+        .map(RobotTime::as_secs_f64)
+}
+
 #[test]
 fn ids_waits_and_the_program_clock() {
     let mut h = host();
@@ -56,10 +62,10 @@ fn ids_waits_and_the_program_clock() {
     assert_eq!(h.moves_submitted(), 2);
     assert!(!h.motion_reached(MotionWait::Done(a)).unwrap());
     // A long wait ends early, when the motion state changes.
-    let t = h.wait_until(100.0).unwrap();
+    let t = wait_secs(&mut h, 100.0).unwrap();
     assert!(t > 0.0 && t < 100.0, "{t}");
     while !h.motion_reached(MotionWait::Done(b)).unwrap() {
-        h.wait_until(100.0).unwrap();
+        wait_secs(&mut h, 100.0).unwrap();
     }
     assert!(h.motion_reached(MotionWait::InPos).unwrap());
     assert!(h.motion_reached(MotionWait::ZeroSpeed).unwrap());
@@ -68,11 +74,12 @@ fn ids_waits_and_the_program_clock() {
         [20.0, 10.0, 0.0, 0.0, 30.0, 0.0]
     );
     // The program's clock ends waits at their exact deadline; the robot's moves in cycles.
-    let deadline = h.now() + 1.25;
+    let deadline = h.now().after_secs(1.25);
     while h.now() < deadline {
         h.wait_until(deadline).unwrap();
     }
     assert_eq!(h.now(), deadline);
+    let deadline = deadline.as_secs_f64();
     let robot = h.controller().unwrap().time().as_secs_f64();
     assert!(robot <= deadline && deadline - robot < 0.004, "{robot}");
     let summary = h.finish(true).unwrap();
@@ -99,7 +106,7 @@ fn a_fault_while_waiting_is_a_rapid_error_and_the_robot_recovers() {
         .unwrap()
         .start_external(Box::new(Jump), ToolData::tool0(), None)
         .unwrap();
-    let e = h.wait_until(1.0).unwrap_err();
+    let e = wait_secs(&mut h, 1.0).unwrap_err();
     assert_eq!(e.errno, Some(errnum::ERR_ROBLIMIT), "{e}");
     assert!(
         e.message.starts_with("Joint speed error: joint 1 speed"),
@@ -110,7 +117,7 @@ fn a_fault_while_waiting_is_a_rapid_error_and_the_robot_recovers() {
         .motion_submit(abs_j([0.0, 0.0, 0.0, 0.0, 45.0, 0.0], ZoneData::FINE))
         .unwrap();
     while !h.motion_reached(MotionWait::Done(id)).unwrap() {
-        h.wait_until(100.0).unwrap();
+        wait_secs(&mut h, 100.0).unwrap();
     }
     assert_eq!(h.motion_joints().unwrap()[4], 45.0);
 }
@@ -129,8 +136,8 @@ fn refused_moves_and_limits() {
     // A refused move never runs: the robot is in position.
     assert!(h.motion_reached(MotionWait::InPos).unwrap());
     // Waiting past --max-time.
-    assert_eq!(h.wait_until(5.0).unwrap(), 2.0);
-    let e = h.wait_until(5.0).unwrap_err();
+    assert_eq!(wait_secs(&mut h, 5.0).unwrap(), 2.0);
+    let e = wait_secs(&mut h, 5.0).unwrap_err();
     assert!(e.message.contains("virtual time limit of 2 s"), "{e}");
 }
 

@@ -12,7 +12,7 @@ use crate::egm::proto::{
 };
 use crate::egm::types::{MAX_EXTERNAL_AXES, MAX_RAPID_DNUM};
 
-const T: Duration = Duration::from_millis(8);
+const T: RobotTime = RobotTime::from_millis(8);
 
 fn header(mtype: MessageType) -> Option<EgmHeader> {
     Some(EgmHeader {
@@ -483,8 +483,8 @@ fn euler_is_zyx_and_round_trips() {
 #[test]
 fn robot_message_has_every_mandatory_field_and_no_force() {
     let mut fb = RobotFeedback::standing([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], Pose::IDENTITY);
-    fb.time = Duration::new(12, 345_678_000);
-    fb.planned_time = Duration::new(12, 349_678_000);
+    fb.time = RobotTime::from_duration(Duration::new(12, 345_678_000));
+    fb.planned_time = RobotTime::from_duration(Duration::new(12, 349_678_000));
     fb.utilization = 12.5;
     let mut msg = EgmRobot::default();
     fill_robot(&mut msg, 3, 4000, &fb, &EncodeOptions::default());
@@ -535,7 +535,7 @@ fn largest_robot_message_fits_in_1024_bytes() {
     let mut fb = RobotFeedback::standing([-123.456_789; 6], Pose::IDENTITY);
     fb.external = ExternalAxes::from_slice(&[1e5; 6]);
     fb.planned_external = fb.external;
-    fb.time = Duration::new(u64::from(u32::MAX), 999_999_000);
+    fb.time = RobotTime::from_duration(Duration::new(u64::from(u32::MAX), 999_999_000));
     fb.planned_time = fb.time;
     fb.move_index = Some(u32::MAX);
     fb.rapid_to_sensor = Some(RapidData::new(Some(true), &[1e300; MAX_RAPID_DNUM]));
@@ -591,12 +591,12 @@ fn non_finite_feedback_is_named() {
 
 #[test]
 fn clock_and_tm_conversions() {
-    let t = Duration::new(5, 4_001_999);
+    let t = RobotTime::from_duration(Duration::new(5, 4_001_999));
     assert_eq!(clock(t), EgmClock { sec: 5, usec: 4001 });
     assert_eq!(clock_to_duration(&clock(t)), Duration::new(5, 4_001_000));
-    assert_eq!(header_tm(Duration::from_millis(1234)), 1234);
+    assert_eq!(header_tm(RobotTime::from_millis(1234)), 1234);
     assert_eq!(
-        header_tm(Duration::from_millis((1u64 << 32) + 5)),
+        header_tm(RobotTime::from_millis((1u64 << 32) + 5)),
         5,
         "wraps at 2^32"
     );

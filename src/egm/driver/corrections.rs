@@ -25,6 +25,7 @@ use crate::egm::types::{
 };
 use crate::robot::{Robot, ToolData, WobjData};
 use crate::signals::SignalTable;
+use crate::time::RobotTime;
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
@@ -34,7 +35,7 @@ use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events,
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Correction {
     /// When it arrived (controller time).
-    pub received_at: Duration,
+    pub received_at: RobotTime,
     /// x, y, z in the path frame, mm (only y and z correct the path; x is passed on for the
     /// corrector's checks).
     pub pos: [f64; 3],
@@ -91,12 +92,12 @@ enum Feed {
     },
     Signals {
         source: SignalSource,
-        next: Duration,
+        next: RobotTime,
     },
     Seam {
         seam: SeamProfile,
         tracker: TrackerKind,
-        next: Duration,
+        next: RobotTime,
     },
 }
 
@@ -115,7 +116,7 @@ pub struct CorrectionLink {
     failed: bool,
     samples: u32,
     awaiting: bool,
-    now: Duration,
+    now: RobotTime,
     events: EventQueue,
     log: LogRing,
     pending: Option<LogRow>,
@@ -127,7 +128,7 @@ impl CorrectionLink {
     /// Errors: bad options ([`EgmError::BadSetup`]); a built-in pattern that is not a path
     /// correction ([`EgmError::BadDevice`]).
     pub fn start(
-        now: Duration,
+        now: RobotTime,
         ctx: &DriverContext,
         plan: &MovePlan,
         source: EgmSource,
@@ -247,7 +248,7 @@ impl CorrectionLink {
     }
 
     /// One motion tick at `now`.
-    pub fn tick(&mut self, now: Duration, input: &CorrectionInput<'_>) -> CorrectionTick {
+    pub fn tick(&mut self, now: RobotTime, input: &CorrectionInput<'_>) -> CorrectionTick {
         self.now = now;
         let measured = self.delay.push(input.commanded);
         if self.failed {
@@ -258,7 +259,7 @@ impl CorrectionLink {
                 failed: None,
             };
         }
-        let due = |next: &mut Duration, period: Duration, half: Duration| {
+        let due = |next: &mut RobotTime, period: Duration, half: Duration| {
             if now.saturating_add(half) < *next {
                 return false;
             }
@@ -422,7 +423,7 @@ impl CorrectionLink {
     }
 }
 
-fn now_correction(now: Duration, pos: [f64; 3]) -> Correction {
+fn now_correction(now: RobotTime, pos: [f64; 3]) -> Correction {
     Correction {
         received_at: now,
         pos,

@@ -17,7 +17,7 @@ impl EgmDriver {
     }
 
     /// Step 4: the `EgmRobot` when due. Returns whether one went out.
-    pub(super) fn transmit(&mut self, now: Duration, out: &ServoOutput) -> bool {
+    pub(super) fn transmit(&mut self, now: RobotTime, out: &ServoOutput) -> bool {
         let feedback = self.robot_feedback(now, out);
         let row = self.row(now, 0, out);
         let Link::Session {
@@ -44,7 +44,7 @@ impl EgmDriver {
     }
 
     /// The feedback of this tick.
-    pub(super) fn robot_feedback(&self, now: Duration, out: &ServoOutput) -> RobotFeedback {
+    pub(super) fn robot_feedback(&self, now: RobotTime, out: &ServoOutput) -> RobotFeedback {
         let rapid_to_sensor = self.do_to_sensor.and_then(|id| {
             self.signals
                 .value(id)
@@ -70,7 +70,7 @@ impl EgmDriver {
     }
 
     /// A log row for this tick without reply data.
-    pub(super) fn row(&self, now: Duration, seqno: u32, out: &ServoOutput) -> LogRow {
+    pub(super) fn row(&self, now: RobotTime, seqno: u32, out: &ServoOutput) -> LogRow {
         let (kind, feedback) = match self.mode {
             EgmMode::Pose => (LogKind::Pose, pose6(&self.fb_pose)),
             _ => (LogKind::Joint, out.feedback),

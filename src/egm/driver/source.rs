@@ -11,6 +11,7 @@ use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
 use crate::egm::session::{EgmSession, Outcome};
 use crate::signals::SignalKind;
+use crate::time::RobotTime;
 use crate::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
 
 use super::EventQueue;
@@ -146,7 +147,7 @@ impl Peer {
     /// Hands every waiting datagram to the session; returns whether one was accepted.
     pub(super) fn receive(
         &mut self,
-        now: Duration,
+        now: RobotTime,
         session: &mut EgmSession,
         events: &mut EventQueue,
     ) -> bool {
@@ -170,7 +171,7 @@ impl Peer {
     /// event when sending failed or the sensor could not answer.
     pub(super) fn send(
         &mut self,
-        now: Duration,
+        now: RobotTime,
         datagram: &[u8],
         session: &mut EgmSession,
     ) -> Option<EgmEvent> {
@@ -182,13 +183,15 @@ impl Peer {
                 )
             }),
             Peer::Builtin(None) => None,
-            Peer::Builtin(Some(sensor)) => match sensor.handle_datagram(now, datagram) {
-                Ok(reply) => {
-                    session.handle_datagram(now, BUILTIN_ADDR, &reply);
-                    None
+            Peer::Builtin(Some(sensor)) => {
+                match sensor.handle_datagram(now.since_start(), datagram) {
+                    Ok(reply) => {
+                        session.handle_datagram(now, BUILTIN_ADDR, &reply);
+                        None
+                    }
+                    Err(e) => Some(EgmEvent::new(EventKind::BuiltinSensor, e.to_string())),
                 }
-                Err(e) => Some(EgmEvent::new(EventKind::BuiltinSensor, e.to_string())),
-            },
+            }
         }
     }
 
@@ -196,7 +199,7 @@ impl Peer {
     /// the session at `now`; returns whether one was accepted. Only a UDP peer waits.
     pub(super) fn wait_reply(
         &mut self,
-        now: Duration,
+        now: RobotTime,
         timeout: Duration,
         session: &mut EgmSession,
         events: &mut EventQueue,

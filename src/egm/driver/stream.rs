@@ -13,6 +13,7 @@ use crate::egm::types::{
     ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState, RobotFeedback,
 };
 use crate::robot::{Robot, ToolData, WobjData};
+use crate::time::RobotTime;
 
 use super::delay::DelayLine;
 use super::source::{BUILTIN_ADDR, Peer};
@@ -51,7 +52,7 @@ impl EgmStream {
     /// device; a built-in device just discards the messages, which still appear in the
     /// log).
     pub fn start(
-        now: Duration,
+        now: RobotTime,
         ctx: &DriverContext,
         plan: &StreamPlan,
         source: EgmSource,
@@ -120,7 +121,7 @@ impl EgmStream {
 
     /// One tick at `now` with the joints commanded this tick; `exec` is the program state
     /// to report.
-    pub fn tick(&mut self, now: Duration, commanded: &Joints, exec: RapidExecState) -> StreamTick {
+    pub fn tick(&mut self, now: RobotTime, commanded: &Joints, exec: RapidExecState) -> StreamTick {
         // Replies are not needed; read and discard them so the socket never fills up.
         self.peer.receive(now, &mut self.session, &mut self.events);
         while self.session.poll_reference().is_some() {}

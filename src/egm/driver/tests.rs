@@ -13,6 +13,7 @@ use crate::egm::registry::{
     ActJoint, ActPose, EgmRegistry, RegistryConfig, RunArgs, SetupSignals, SetupUc,
 };
 use crate::signals::SignalKind;
+use crate::time::RobotTime;
 
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
 
@@ -63,11 +64,11 @@ fn joint_signals_beyond_an_axis_limit_are_refused_and_the_previous_stays() {
     table.set(j2, 5.0).unwrap();
     let ctx = ctx(Arc::clone(&table));
     let source = EgmSource::open(&plan.source).unwrap();
-    let mut d = EgmDriver::start(Duration::ZERO, &ctx, &plan, source, &START).unwrap();
+    let mut d = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
     let mut q = START;
     let tick = Duration::from_millis(4);
     for k in 0..600u32 {
-        q = d.tick(tick * k, &q).joints_cmd;
+        q = d.tick(RobotTime::from_duration(tick * k), &q).joints_cmd;
     }
     assert!(
         (q[0] - 10.0).abs() < 0.05 && (q[1] - 5.0).abs() < 0.05,
@@ -76,7 +77,7 @@ fn joint_signals_beyond_an_axis_limit_are_refused_and_the_previous_stays() {
     // J2 = 1000° is beyond its limit: refused once with 90105, the robot stays.
     table.set(j2, 1000.0).unwrap();
     for k in 600..700u32 {
-        let t = d.tick(tick * k, &q);
+        let t = d.tick(RobotTime::from_duration(tick * k), &q);
         q = t.joints_cmd;
         assert!(t.sent, "signals are sampled every tick at 4 ms");
     }
@@ -120,14 +121,14 @@ fn start_checks() {
         .run_pose(id, &RunArgs::new(StopMode::Hold), [true; 6], None)
         .unwrap();
     let source = || EgmSource::open(&plan.source).unwrap();
-    let err = EgmDriver::start(Duration::ZERO, &ctx, &plan, source(), &START).unwrap_err();
+    let err = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source(), &START).unwrap_err();
     assert!(err.to_string().contains("stationary tool"), "{err}");
     // Start beyond an axis limit, or not finite.
     let mut beyond = START;
     beyond[2] = 500.0;
-    let err = EgmDriver::start(Duration::ZERO, &ctx, &plan, source(), &beyond).unwrap_err();
+    let err = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source(), &beyond).unwrap_err();
     assert_eq!(err.event().number, 50027, "{err}");
-    let err = EgmDriver::start(Duration::ZERO, &ctx, &plan, source(), &[f64::NAN; 6]).unwrap_err();
+    let err = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source(), &[f64::NAN; 6]).unwrap_err();
     assert!(matches!(err, EgmError::Supervision(_)));
     // A built-in pattern of the other mode.
     let joint_source = EgmSource::Builtin {
@@ -140,12 +141,12 @@ fn start_checks() {
     let plan = reg
         .run_pose(id, &RunArgs::new(StopMode::Hold), [true; 6], None)
         .unwrap();
-    let err = EgmDriver::start(Duration::ZERO, &ctx, &plan, joint_source, &START).unwrap_err();
+    let err = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, joint_source, &START).unwrap_err();
     assert!(matches!(err, EgmError::BadDevice { .. }), "{err}");
     // A zero tick.
     let mut bad = ctx.clone();
     bad.options.tick = Duration::ZERO;
-    assert!(EgmDriver::start(Duration::ZERO, &bad, &plan, source(), &START).is_err());
+    assert!(EgmDriver::start(RobotTime::ZERO, &bad, &plan, source(), &START).is_err());
 }
 
 #[test]

@@ -11,12 +11,13 @@ use crate::egm::convert::{
     EncodeOptions, ReferenceLimits, decode_reference, fill_robot, quaternion_from_euler_zyx,
 };
 use crate::egm::types::{RobotFeedback, SensorReference, Target};
+use crate::time::RobotTime;
 
 const MS: Duration = Duration::from_millis(1);
 
 fn robot_bytes(seqno: u32, joints: Joints, pose: Pose) -> Vec<u8> {
     let mut fb = RobotFeedback::standing(joints, pose);
-    fb.time = MS * 4 * seqno;
+    fb.time = RobotTime::from_duration(MS * 4 * seqno);
     fb.planned_time = fb.time;
     let mut msg = EgmRobot::default();
     fill_robot(&mut msg, seqno, 4 * seqno, &fb, &EncodeOptions::default());
@@ -36,7 +37,7 @@ fn decode(bytes: &[u8], mode: EgmMode) -> SensorReference {
         mode,
         &Pose::IDENTITY,
         &ReferenceLimits::default(),
-        Duration::ZERO,
+        RobotTime::ZERO,
     )
     .unwrap()
 }

@@ -13,7 +13,7 @@ const CLOCK_MAX: f64 = 4_294_967.0;
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
     r.add("PROC ClkReset(VAR clock Clock)", |cx| {
-        let now = cx.now();
+        let now = cx.now_secs();
         let running = state(cx)?.0;
         cx.set(0, clock(running, now, 0.0))?;
         Ok(Value::Absent)
@@ -21,7 +21,7 @@ pub(super) fn register(r: &mut Registry) {
     r.add("PROC ClkStart(VAR clock Clock)", |cx| {
         let (running, start, acc) = state(cx)?;
         if !running {
-            let now = cx.now();
+            let now = cx.now_secs();
             cx.set(0, clock(true, now, acc))?;
         } else {
             cx.set(0, clock(true, start, acc))?;
@@ -31,7 +31,7 @@ pub(super) fn register(r: &mut Registry) {
     r.add("PROC ClkStop(VAR clock Clock)", |cx| {
         let (running, start, acc) = state(cx)?;
         if running {
-            let now = cx.now();
+            let now = cx.now_secs();
             cx.set(0, clock(false, now, acc + (now - start)))?;
         }
         Ok(Value::Absent)
@@ -41,7 +41,7 @@ pub(super) fn register(r: &mut Registry) {
         |cx| {
             let (running, start, acc) = state(cx)?;
             let t = if running {
-                acc + (cx.now() - start)
+                acc + (cx.now_secs() - start)
             } else {
                 acc
             };

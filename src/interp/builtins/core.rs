@@ -102,7 +102,7 @@ fn wait_time(cx: &mut Ctx<'_>) -> Exec<Value> {
         // `\InPos`: the robot must stand still before the time starts.
         super::motion::wait_for(cx, MotionWait::InPos)?;
     }
-    let deadline = cx.now() + t;
+    let deadline = cx.now().after_secs(t);
     let (p, span) = (cx.p, cx.span);
     cx.it.wait(p, span, Some(deadline), None, 0.0)?;
     Ok(Value::Absent)
@@ -117,7 +117,7 @@ fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
     }
     let max = cx.opt_f64(2)?;
     let poll = cx.opt_f64(4)?.unwrap_or(0.1).max(0.004);
-    let deadline = max.map(|m| cx.now() + m);
+    let deadline = max.map(|m| cx.now().after_secs(m));
     let cond_expr = cx.arg_expr(1);
     let (p, span) = (cx.p, cx.span);
     let first = match cond_expr {

@@ -10,14 +10,10 @@
 //! live in `egm_path.rs`, which replaces the placeholders registered here.
 
 use super::{Ctx, NativeFn, Registry};
-use crate::egm::EgmError;
-use crate::egm::geometry::EgmFrameType;
-use crate::egm::registry::{
-    ActCommon, ActJoint, ActMove, ActPose, RunArgs, SetupLtapp, SetupSignals, SetupUc, TrackerKind,
-    frame_type_from_value, stop_mode_from_value,
+use crate::egm_args::{
+    ActCommon, ActJoint, ActMove, ActPose, ArgumentError, EgmFrameType, EgmMode, MinMax, RunArgs,
+    SetupLtapp, SetupSignals, SetupUc, StopMode, TrackerKind,
 };
-use crate::egm::servo::MinMax;
-use crate::egm::types::EgmMode;
 use crate::interp::NArg;
 use crate::interp::errnum;
 use crate::interp::error::{ErrorKind, Exec, Unwind};
@@ -136,7 +132,7 @@ fn no_egm(cx: &Ctx<'_>) -> Unwind {
 
 /// An argument the registry refused before anything reached the controller (fatal, with
 /// its event).
-fn egm_error(cx: &Ctx<'_>, e: &EgmError) -> Unwind {
+fn egm_error(cx: &Ctx<'_>, e: &ArgumentError) -> Unwind {
     cx.it.fatal(ErrorKind::Host, cx.span, e.event().to_string())
 }
 
@@ -360,7 +356,7 @@ fn tracker(cx: &Ctx<'_>, first: usize, latr: bool) -> Option<TrackerKind> {
 }
 
 fn run_args(cx: &Ctx<'_>, instruction: &'static str, first_num: usize) -> Exec<RunArgs> {
-    let stop_mode = stop_mode_from_value(instruction, cx.f64(1)?).map_err(|e| egm_error(cx, &e))?;
+    let stop_mode = StopMode::from_value(instruction, cx.f64(1)?).map_err(|e| egm_error(cx, &e))?;
     Ok(RunArgs {
         stop_mode,
         no_wait_cond: cx.present(2),
@@ -497,7 +493,7 @@ fn egm_act_joint(cx: &mut Ctx<'_>) -> Exec<Value> {
 }
 
 fn frame_type(cx: &Ctx<'_>, i: usize, argument: &'static str) -> Exec<EgmFrameType> {
-    frame_type_from_value("EGMActPose", argument, cx.f64(i)?).map_err(|e| egm_error(cx, &e))
+    EgmFrameType::from_argument("EGMActPose", argument, cx.f64(i)?).map_err(|e| egm_error(cx, &e))
 }
 
 fn egm_act_pose(cx: &mut Ctx<'_>) -> Exec<Value> {
@@ -570,7 +566,7 @@ fn egm_run_pose(cx: &mut Ctx<'_>) -> Exec<Value> {
 
 fn egm_stop(cx: &mut Ctx<'_>) -> Exec<Value> {
     let id = ident(cx, 0)?;
-    let mode = stop_mode_from_value("EGMStop", cx.f64(1)?).map_err(|e| egm_error(cx, &e))?;
+    let mode = StopMode::from_value("EGMStop", cx.f64(1)?).map_err(|e| egm_error(cx, &e))?;
     let ramp_out = cx.opt_f64(2)?;
     with_egm(cx, |h| h.egm_stop(&id, mode, ramp_out))?;
     wait_for(cx, &id, |h, id| h.egm_run_active(id).map(|a| !a))?;

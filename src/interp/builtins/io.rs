@@ -115,7 +115,7 @@ fn delayed_write(cx: &mut Ctx<'_>, sig: usize, delay: usize, v: f64) -> Exec<Val
     match cx.opt_f64(delay)? {
         Some(d) if d > 0.0 => {
             let name = signal_name(cx, sig)?;
-            let at = cx.now() + d;
+            let at = cx.now().after_secs(d);
             cx.it.schedule_write(at, name, v);
             Ok(Value::Absent)
         }
@@ -142,7 +142,7 @@ fn pulse_do(cx: &mut Ctx<'_>) -> Exec<Value> {
     cx.host()
         .write_signal(&name, on)
         .map_err(|e| cx.host_err(e))?;
-    let at = cx.now() + len;
+    let at = cx.now().after_secs(len);
     cx.it.schedule_write(at, name, after);
     Ok(Value::Absent)
 }
@@ -151,7 +151,7 @@ fn wait_signal(cx: &mut Ctx<'_>) -> Exec<Value> {
     let name = signal_name(cx, 0)?;
     let want = dio(cx, 1)?;
     let max = cx.opt_f64(2)?;
-    let deadline = max.map(|m| cx.now() + m);
+    let deadline = max.map(|m| cx.now().after_secs(m));
     let (p, span) = (cx.p, cx.span);
     let mut f = |it: &mut crate::interp::Interp, _: &crate::ir::Program| {
         let v = it

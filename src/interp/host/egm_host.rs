@@ -1,15 +1,15 @@
 //! The EGM capability of a host ([`EgmHost`]): what the EGM instructions ask of the controller. A host without EGM (the deterministic [`super::VirtualHost`] of `rapidvc test`) returns `None` from [`super::Host::egm`], and the instructions stop the program with "… is not supported by this controller".
 //!
-//! The requests are the registry's own argument types ([`crate::egm::registry`]): plain data
-//! that the natives fill from RAPID values (the one place the interpreter names `egm` types;
-//! it never calls into `egm`). Identities are passed by name (see
+//! The requests are the shared EGM vocabulary of [`crate::egm_args`]: plain data that the
+//! natives fill from RAPID values and the controller hands to the EGM registry (the
+//! interpreter never names `egm`). Identities are passed by name (see
 //! [`crate::interp::builtins`]'s egm natives): the same variable always maps to the same
 //! identity.
 
-use crate::egm::registry::{
+use crate::egm_args::{
     ActJoint, ActMove, ActPose, CorrState, EgmState, RunArgs, SetupLtapp, SetupSignals, SetupUc,
+    StopMode,
 };
-use crate::egm::servo::StopMode;
 use crate::robot::Pose;
 use crate::signals::SignalId;
 use crate::source::Span;

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use super::panel::{Curve, Panel, Spans, Stroke, VLine};
 use super::{FONT, JOINT_COLORS, PlotData, XYZ_COLORS, keep};
-use crate::output::feed::{EgmAxes, EgmSample, EgmTraceState};
+use crate::controller::sample_feed::{EgmAxes, EgmSample, EgmTraceState};
 
 /// Heights (px) of a block's title, one row of reference/feedback charts and the error chart.
 const TITLE_H: u32 = 50;
@@ -253,7 +253,7 @@ fn state_lines(data: &PlotData, (x0, x1): (f64, f64), labels: bool) -> Vec<VLine
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::motion::RobotTime;
+    use crate::time::RobotTime;
 
     #[test]
     fn limited_cycles_merge_into_spans() {

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use super::panel::{Curve, Panel, Stroke};
 use super::{FONT, PlotData, keep};
-use crate::output::feed::PathCorrSample;
+use crate::controller::sample_feed::PathCorrSample;
 
 const TITLE_H: u32 = 50;
 /// At most this many seam measurements are drawn as dots.

@@ -27,7 +27,7 @@ pub const MAX_GAP_S: f64 = 0.5;
 /// Robot time in µs (the page's time unit).
 pub type Micros = i64;
 
-fn micros(sp_time: crate::motion::RobotTime) -> Micros {
+fn micros(sp_time: crate::time::RobotTime) -> Micros {
     i64::try_from(sp_time.as_nanos() / 1000).unwrap_or(i64::MAX)
 }
 

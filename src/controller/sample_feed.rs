@@ -1,6 +1,8 @@
 //! The controller's side channel into the outputs: EGM samples, EGM state changes and
 //! path-correction samples, pushed around the motion cycle (no allocation, never blocking) and
-//! consumed by the trace and plot sinks in robot-time order.
+//! consumed by the trace and plot sinks in robot-time order. The controller owns this stream of
+//! plain rows; the outputs (`crate::output`, which re-exports these types) only subscribe and
+//! read it, so the controller never names an output.
 //!
 //! # Wiring
 //!
@@ -41,7 +43,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, SyncSender, TrySendError};
 
-use crate::motion::RobotTime;
+use crate::time::RobotTime;
 
 /// Items buffered per consumer (≈ 32 s of one EGM and one path-correction sample per 4 ms
 /// cycle). Only matters in real time, where the recorder thread may lag the motion thread.
