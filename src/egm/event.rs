@@ -133,6 +133,9 @@ pub enum EventKind {
     BuiltinSensor,
     /// 90116: the UdpUc device's socket could not be opened.
     DeviceOpen,
+    /// 90117: `\MaxSpeedDeviation` above the robot's slowest axis speed (EGM speeds are
+    /// limited to that axis speed).
+    SpeedDeviationCapped,
     /// 50452: path correction with a motion profile that is not Level 2 (ABB).
     CyclicError,
     /// 90120: a fifth EGM identity was requested in a task.
@@ -185,6 +188,7 @@ impl EventKind {
             EventKind::SignalSource => 90114,
             EventKind::BuiltinSensor => 90115,
             EventKind::DeviceOpen => 90116,
+            EventKind::SpeedDeviationCapped => 90117,
             EventKind::CyclicError => 50452,
             EventKind::TooManyIdentities => 90120,
             EventKind::NotReserved => 90121,
@@ -223,6 +227,7 @@ impl EventKind {
             EventKind::SignalSource => "EGM signal source error",
             EventKind::BuiltinSensor => "Built-in EGM sensor error",
             EventKind::DeviceOpen => "EGM UdpUc device cannot be opened",
+            EventKind::SpeedDeviationCapped => "EGM MaxSpeedDeviation above the axis speed",
             EventKind::CyclicError => "External Interface Cyclic Error",
             EventKind::TooManyIdentities => "Too many EGM identities",
             EventKind::NotReserved => "EGM identity not reserved",

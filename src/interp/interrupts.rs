@@ -300,7 +300,7 @@ impl Interp {
         for no in fired {
             if !self.ints.queue(no) {
                 self.host.output(super::Output::Event(format!(
-                    "interrupt queue full: interrupt {no} was lost"
+                    "90301 Interrupt queue full: interrupt {no} was lost"
                 )));
             }
         }

@@ -134,14 +134,16 @@ pub enum MotionError {
 }
 
 impl MotionError {
-    /// The ABB event log number and title where one is known (docs/robot.md, "Errors and events"). Events without a
-    /// verified ABB number return `None`.
+    /// The event-log number and title (docs/robot.md, "Errors and events"): ABB's number
+    /// where one is known, rapidvc's own 902xx otherwise.
     ///
     /// * kinematics: [`KinError::event`] (50050, 50027, 50026);
     /// * a configuration change under ConfL\On: 50050 "Position outside reach" (as
     ///   `KinError::ConfigurationUnreachable`);
     /// * corner path failure: 50024;
-    /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**).
+    /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**);
+    /// * joint speed, unusable motion data, unsupported data, a halted motion core, a move
+    ///   during external guidance, guidance away from a stop point: 90201–90206 (rapidvc's).
     pub fn event(&self) -> Option<(u32, &'static str)> {
         match self {
             MotionError::Kinematics { error, .. } => Some(error.event()),
@@ -149,12 +151,12 @@ impl MotionError {
             MotionError::CircleUncertain { .. } => Some((50063, "Circle uncertain")),
             MotionError::CornerPathFailure { .. } => Some((50024, "Corner path failure")),
             MotionError::PathCorrection { number, title, .. } => Some((*number, title)),
-            MotionError::JointSpeed { .. } => None,
-            MotionError::InvalidData { .. }
-            | MotionError::NotSupported { .. }
-            | MotionError::Halted
-            | MotionError::ExternalGuidance
-            | MotionError::NotAtStopPoint => None,
+            MotionError::JointSpeed { .. } => Some((90201, "Joint speed error")),
+            MotionError::InvalidData { .. } => Some((90202, "Invalid motion data")),
+            MotionError::NotSupported { .. } => Some((90203, "Not supported")),
+            MotionError::Halted => Some((90204, "Motion stopped")),
+            MotionError::ExternalGuidance => Some((90205, "External guidance active")),
+            MotionError::NotAtStopPoint => Some((90206, "Not in a stop point")),
         }
     }
 
