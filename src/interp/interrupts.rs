@@ -299,8 +299,11 @@ impl Interp {
         }
         for no in fired {
             if !self.ints.queue(no) {
+                let event = crate::events::EventKind::InterruptQueueFull;
                 self.host.output(super::Output::Event(format!(
-                    "90301 Interrupt queue full: interrupt {no} was lost"
+                    "{} {}: interrupt {no} was lost",
+                    event.number(),
+                    event.title()
                 )));
             }
         }

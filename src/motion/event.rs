@@ -3,6 +3,8 @@
 
 use std::fmt;
 
+use crate::events::EventKind;
+pub use crate::events::Severity;
 use crate::robot::error::msg_num;
 use crate::robot::{ConfData, KinError};
 use crate::source::Span;
@@ -145,19 +147,20 @@ impl MotionError {
     /// * joint speed, unusable motion data, unsupported data, a halted motion core, a move
     ///   during external guidance, guidance away from a stop point: 90201–90206 (rapidvc's).
     pub fn event(&self) -> Option<(u32, &'static str)> {
-        match self {
-            MotionError::Kinematics { error, .. } => Some(error.event()),
-            MotionError::ConfigurationChanged { .. } => Some((50050, "Position outside reach")),
-            MotionError::CircleUncertain { .. } => Some((50063, "Circle uncertain")),
-            MotionError::CornerPathFailure { .. } => Some((50024, "Corner path failure")),
-            MotionError::PathCorrection { number, title, .. } => Some((*number, title)),
-            MotionError::JointSpeed { .. } => Some((90201, "Joint speed error")),
-            MotionError::InvalidData { .. } => Some((90202, "Invalid motion data")),
-            MotionError::NotSupported { .. } => Some((90203, "Not supported")),
-            MotionError::Halted => Some((90204, "Motion stopped")),
-            MotionError::ExternalGuidance => Some((90205, "External guidance active")),
-            MotionError::NotAtStopPoint => Some((90206, "Not in a stop point")),
-        }
+        let kind = match self {
+            MotionError::Kinematics { error, .. } => error.event_kind(),
+            MotionError::ConfigurationChanged { .. } => EventKind::OutsideReach,
+            MotionError::CircleUncertain { .. } => EventKind::CircleUncertain,
+            MotionError::CornerPathFailure { .. } => EventKind::CornerPathFailure,
+            MotionError::PathCorrection { number, title, .. } => return Some((*number, title)),
+            MotionError::JointSpeed { .. } => EventKind::JointSpeed,
+            MotionError::InvalidData { .. } => EventKind::InvalidMotionData,
+            MotionError::NotSupported { .. } => EventKind::MotionNotSupported,
+            MotionError::Halted => EventKind::MotionStopped,
+            MotionError::ExternalGuidance => EventKind::ExternalGuidance,
+            MotionError::NotAtStopPoint => EventKind::NotAtStopPoint,
+        };
+        Some((kind.number(), kind.title()))
     }
 
     /// The RAPID error an `ERROR` handler can catch, where one applies.
@@ -172,32 +175,10 @@ impl MotionError {
         }
     }
 
-    /// A short title for logs: the ABB title when there is one.
+    /// A short title for logs: the event's title.
     pub fn title(&self) -> &'static str {
-        match self.event() {
-            Some((_, title)) => title,
-            None => match self {
-                MotionError::JointSpeed { .. } => "Joint speed error",
-                MotionError::InvalidData { .. } => "Invalid motion data",
-                MotionError::NotSupported { .. } => "Not supported",
-                MotionError::Halted => "Motion stopped",
-                MotionError::ExternalGuidance => "External guidance active",
-                MotionError::NotAtStopPoint => "Not in a stop point",
-                _ => "Motion error",
-            },
-        }
+        self.event().map_or("Motion error", |(_, title)| title)
     }
-}
-
-/// How serious an event is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Severity {
-    /// For information.
-    Info,
-    /// The robot went on (e.g. a fly-by point became a stop point).
-    Warning,
-    /// The move was refused or the robot stopped.
-    Error,
 }
 
 /// One entry of the motion core's event log.
