@@ -65,6 +65,31 @@ pub enum Outcome {
 /// least this often (a few microseconds of statements).
 pub const STOP_CHECK_EVERY: u64 = 1024;
 
+/// How routine bodies are executed. Both engines implement the same semantics (outputs,
+/// data, errors with their spans and call stacks, step counts); `tests/interp_agree.rs`
+/// runs generated programs and every RAPID file of the repository both ways and compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Engine {
+    /// Compiled closures with specialised fast paths (the default).
+    #[default]
+    Compiled,
+    /// The tree-walking reference: every statement and expression is interpreted from the
+    /// IR, nothing specialised or inlined. Much slower; for comparing against.
+    TreeWalk,
+}
+
+impl Engine {
+    /// The engine named by the environment variable `RAPIDVC_ENGINE` (`tree-walk` or
+    /// `compiled`), else the compiled one. Lets the differential tests run the command-line
+    /// tool with the reference engine.
+    pub fn from_env() -> Engine {
+        match std::env::var("RAPIDVC_ENGINE") {
+            Ok(v) if v.eq_ignore_ascii_case("tree-walk") => Engine::TreeWalk,
+            _ => Engine::Compiled,
+        }
+    }
+}
+
 /// What the before-statement hook wants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HookAction {
@@ -164,10 +189,22 @@ impl std::fmt::Debug for Interp {
 }
 
 impl Interp {
-    /// An interpreter for `prog`, which must have been checked against `registry`.
+    /// An interpreter for `prog`, which must have been checked against `registry`, running
+    /// on the engine [`Engine::from_env`] names (the compiled one unless the environment
+    /// says otherwise).
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
+        Self::with_engine(prog, registry, host, Engine::from_env())
+    }
+
+    /// An interpreter for `prog` on the given engine.
+    pub fn with_engine(
+        prog: Arc<Program>,
+        registry: &Registry,
+        host: Box<dyn Host>,
+        engine: Engine,
+    ) -> Interp {
         let natives = registry.impls_for(&prog.natives);
-        let code = Arc::new(compile::Code::new(prog.clone()));
+        let code = Arc::new(compile::Code::new(prog.clone(), engine));
         // What the semantic pass counted as module data (predefined data is not RAPID
         // memory).
         let module_values = prog

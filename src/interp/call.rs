@@ -62,95 +62,6 @@ impl Interp {
         }
     }
 
-    /// Call a simple function (see [`crate::ir::Routine::simple`]) whose result is a `num`,
-    /// on the NaN-signalling path: no statement loop, no `Value` results.
-    #[inline]
-    pub(crate) fn call_simple_num(
-        &mut self,
-        p: &Program,
-        rid: RoutineId,
-        args: &[Arg],
-        span: Span,
-    ) -> f32 {
-        let r = p.routine(rid);
-        let [
-            crate::ir::Stmt {
-                kind: crate::ir::StmtKind::Return(Some(body)),
-                span: st_span,
-            },
-        ] = r.body.stmts.as_slice()
-        else {
-            return self.call_num_general(p, rid, args, span);
-        };
-        // A call with array arguments, or one the task's data cannot take, goes the general
-        // way (which counts the arrays, or raises ERR_DATA_LIMIT).
-        let values = match self.code.routines.get(rid.0 as usize) {
-            Some(cr) if cr.frame.arrays.is_empty() => cr.frame.fixed,
-            _ => u64::MAX,
-        };
-        if self.frames.len() >= MAX_DEPTH
-            || self.stack_exhausted()
-            || self.data_values.saturating_add(values) > crate::ir::limits::MAX_TASK_VALUES
-        {
-            return self.call_num_general(p, rid, args, span);
-        }
-        let bp = self.sp;
-        // Arguments are pushed as they are computed (nested calls made while evaluating
-        // one use the stack above it and leave it as they found it).
-        for (param, arg) in r.params.iter().zip(args.iter()) {
-            match arg {
-                Arg::Value(e) if param.ty == crate::ir::Ty::NUM => {
-                    let x = self.nf(p, e);
-                    if x.is_nan() {
-                        self.sp = bp;
-                        return x;
-                    }
-                    self.push_num(x);
-                }
-                _ => match self.arg_value(p, arg) {
-                    Ok(v) => self.push_value(v),
-                    Err(u) => {
-                        self.sp = bp;
-                        self.pending = Some(u);
-                        return f32::NAN;
-                    }
-                },
-            }
-        }
-        while self.sp < bp + r.n_slots as usize {
-            self.push_num(0.0);
-        }
-        if let Some(f) = self.frames.last_mut() {
-            f.at = span;
-        }
-        self.frames.push(Frame {
-            routine: rid,
-            bp: bp as u32,
-            at: *st_span,
-            handling: None,
-        });
-        let saved = (self.bp, self.rbp);
-        self.bp = bp;
-        self.data_values += values;
-        self.steps += 1;
-        let x = if self.steps >= self.next_poll {
-            match self.poll_at(p, *st_span) {
-                Ok(()) => self.nf(p, body),
-                Err(u) => {
-                    self.pending = Some(u);
-                    f32::NAN
-                }
-            }
-        } else {
-            self.nf(p, body)
-        };
-        self.data_values -= values;
-        (self.bp, self.rbp) = saved;
-        self.frames.pop();
-        self.sp = bp;
-        x
-    }
-
     #[inline(never)]
     pub(crate) fn call_num_general(
         &mut self,
@@ -276,8 +187,8 @@ impl Interp {
         (self.bp, self.rbp) = (bp, rbp);
         let res = match self.init_locals(p, r, bp) {
             Ok(()) => match c.routines.get(rid.0 as usize) {
-                Some(cr) => self.exec_cblock(c, &cr.body),
-                None => self.exec_block(p, &r.body),
+                Some(cr) if !c.tree_walk => self.exec_cblock(c, &cr.body),
+                _ => self.exec_block(p, &r.body),
             },
             Err(u) => Err(u),
         };

@@ -14,8 +14,8 @@ mod simple;
 
 use std::sync::Arc;
 
-use super::Interp;
 use super::error::Exec;
+use super::{Engine, Interp};
 use crate::ir::{Block, Program, Routine, RoutineKind, Stmt, StmtKind, Ty};
 use crate::source::Span;
 pub(crate) use call::CCall;
@@ -33,6 +33,9 @@ pub(crate) struct Code {
     pub prog: Arc<Program>,
     /// Compiled routines (index = [`crate::ir::RoutineId`]).
     pub routines: Box<[CRoutine]>,
+    /// Routine bodies run on the tree-walking reference engine (their compiled form is
+    /// empty then).
+    pub tree_walk: bool,
 }
 
 /// A compiled routine.
@@ -92,10 +95,30 @@ pub(crate) struct CStmt {
 }
 
 impl Code {
-    /// Compile every routine of `prog`.
-    pub(crate) fn new(prog: Arc<Program>) -> Code {
-        let routines = prog.routines.iter().map(|r| routine(&prog, r)).collect();
-        Code { prog, routines }
+    /// Compile every routine of `prog` (for the tree-walking engine, only what a call
+    /// needs to know about its frame).
+    pub(crate) fn new(prog: Arc<Program>, engine: Engine) -> Code {
+        let tree_walk = engine == Engine::TreeWalk;
+        let routines = prog
+            .routines
+            .iter()
+            .map(|r| match tree_walk {
+                false => routine(&prog, r),
+                true => CRoutine {
+                    body: CBlock {
+                        stmts: Box::new([]),
+                        labels: Box::new([]),
+                    },
+                    frame: FrameData::of(&prog, r),
+                    ret_num: None,
+                },
+            })
+            .collect();
+        Code {
+            prog,
+            routines,
+            tree_walk,
+        }
     }
 }
 
@@ -130,6 +153,12 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
 /// iteration is counted against the budget.
 pub(crate) fn loop_head(span: Span, to: &crate::ir::Expr, step: Option<&crate::ir::Expr>) -> Span {
     span.start_point().merge(step.unwrap_or(to).span)
+}
+
+/// The head of a WHILE statement at `span` (`WHILE cond DO`), where each iteration of an
+/// empty body is counted.
+pub(crate) fn while_head(span: Span, cond: &crate::ir::Expr) -> Span {
+    span.start_point().merge(cond.span)
 }
 
 /// What statement compilation needs to know about the routine.
@@ -179,12 +208,11 @@ impl Cx<'_> {
                 })
             }
             StmtKind::While { cond, body } => {
-                let cond_span = cond.span;
+                let head = while_head(s.span, cond);
                 let cond = cond::cond(p, cond);
                 let body = self.block(body);
                 if body.stmts.is_empty() {
                     // No statement counts the iterations: the loop head does.
-                    let head = s.span.start_point().merge(cond_span);
                     Box::new(move |it, c| {
                         while cond(it, c)? {
                             it.step(&c.prog, head)?;

@@ -252,19 +252,6 @@ impl Interp {
         r
     }
 
-    /// The root value of a place (fast paths).
-    #[inline(always)]
-    fn root_ref(&self, root: Root) -> Result<&Value, WalkErr> {
-        match root {
-            Root::Local(s) => self.stack.get(self.bp + s as usize).ok_or(WalkErr::Shape),
-            Root::Global(g) => self.globals.get(g as usize).ok_or(WalkErr::Shape),
-            Root::Ref(k) => {
-                let r = self.refs.get(self.rbp + k as usize).ok_or(WalkErr::Shape)?;
-                self.abs_get(r)
-            }
-        }
-    }
-
     /// `a{i}` on a 1-D array: the element's offset, or the walk error.
     #[inline(always)]
     fn elem1_offset(a: &Array, i: i64) -> Result<usize, WalkErr> {
@@ -273,37 +260,6 @@ impl Interp {
         } else {
             Err(oob(a, &[i]))
         }
-    }
-
-    /// Read a `num` place without copying anything else.
-    pub(crate) fn load_f32(&mut self, p: &Program, pl: &Place) -> Exec<Option<f32>> {
-        // Fast path: `a{i}` of a 1-D array.
-        if let [PathOp::Index(es)] = &*pl.path
-            && let [ie] = &**es
-        {
-            let i = self.eval_index(p, ie)?;
-            let r = match self.root_ref(pl.root) {
-                Ok(Value::Array(a)) => match Self::elem1_offset(a, i) {
-                    Ok(o) => match a.data.get(o) {
-                        Some(Value::Num(x)) => return Ok(Some(*x)),
-                        _ => Ok(None),
-                    },
-                    Err(e) => Err(e),
-                },
-                Ok(Value::Absent) => Err(WalkErr::NotPresent),
-                Ok(_) => Err(WalkErr::Shape),
-                Err(e) => Err(e),
-            };
-            return r.map_err(|e| self.walk_err(e, pl.span));
-        }
-        let mark = self.push_indices(p, pl)?;
-        let r = match self.read_walk(pl, mark) {
-            Ok(Value::Num(x)) => Ok(Some(*x)),
-            Ok(_) => Ok(None),
-            Err(e) => Err(self.walk_err(e, pl.span)),
-        };
-        self.idx.truncate(mark);
-        r
     }
 
     /// Resolve a place to an absolute reference (for reference arguments).

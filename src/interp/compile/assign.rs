@@ -2,7 +2,7 @@
 //! `RETURN …` in a `FUNC num`), fused with the expression's top operation so that the
 //! statement is a single closure.
 
-use super::num::{Elem, Konst, NumFn, Src, bin, is_num_arith, num, opnd};
+use super::num::{Elem, Konst, NumFn, Src, bin, num, opnd};
 use super::{Code, StmtFn};
 use crate::interp::Interp;
 use crate::interp::error::{Exec, Unwind};
@@ -79,7 +79,7 @@ fn finish(it: &mut Interp, c: &Code, sink: &Sink, x: f32, vs: Span) -> Exec<()> 
 pub(crate) fn num_into(p: &Program, value: &Expr, sink: Sink) -> StmtFn {
     let vs = value.span;
     match &value.kind {
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
             let b = opnd(p, b);
             match b.konst() {
                 Some(k) => arith_into(*op, opnd(p, a), Konst(k), vs, sink),

@@ -251,7 +251,7 @@ pub(crate) fn opnd(p: &Program, e: &Expr) -> Opnd {
         return Opnd::V(l);
     }
     match &e.kind {
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
             if let (Some(a), Some(b)) = (Leaf::of(a), Leaf::of(b)) {
                 return Opnd::B(Box::new((*op, a, b, e.span)));
             }
@@ -282,7 +282,7 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
             let o = opnd(p, e);
             Box::new(move |it, c| o.get(it, c))
         }
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => arith(*op, opnd(p, a), opnd(p, b), span),
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => arith(*op, opnd(p, a), opnd(p, b), span),
         ExprKind::NumModDivK(a, k, is_mod) => {
             let (a, d, is_mod) = (opnd(p, a), DivK::new(*k), *is_mod);
             Box::new(move |it, c| {
@@ -314,19 +314,6 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
 fn fallback(e: &Expr) -> NumFn {
     let e = e.clone();
     Box::new(move |it, c| it.nf(&c.prog, &e))
-}
-
-/// `+ - * / DIV MOD` on `num`.
-pub(crate) fn is_num_arith(op: BinOp) -> bool {
-    matches!(
-        op,
-        BinOp::NumAdd
-            | BinOp::NumSub
-            | BinOp::NumMul
-            | BinOp::NumDiv
-            | BinOp::NumIntDiv
-            | BinOp::NumMod
-    )
 }
 
 /// `a op b` for a `num` arithmetic operator (a constant right operand is read without
