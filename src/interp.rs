@@ -435,6 +435,21 @@ impl Interp {
             .collect()
     }
 
+    /// Names and current values of the program's module data (VAR, PERS and CONST of its
+    /// own modules, in declaration order; the stdlib's are not included).
+    pub fn module_data(&self) -> Vec<(String, Value)> {
+        self.prog
+            .globals
+            .iter()
+            .zip(&self.globals)
+            .filter(|(g, _)| match g.origin {
+                GlobalOrigin::Module(m) => !self.prog.modules[m.0 as usize].stdlib,
+                _ => false,
+            })
+            .map(|(g, v)| (g.name.clone(), v.clone()))
+            .collect()
+    }
+
     /// Overwrite persistents with stored values (after [`Interp::init`]). Returns the
     /// entries the program does not declare (to keep them) and warnings for entries whose
     /// value does not fit the declared type (the program's value is kept for those).
