@@ -158,6 +158,8 @@ pub struct Interp {
     ret: Value,
     /// The error behind a NaN of the NaN-signalling `num` path.
     pending: Option<Unwind>,
+    /// Buffers for building strings (kept for reuse).
+    strbufs: Vec<String>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -229,6 +231,7 @@ impl Interp {
             rbp: 0,
             ret: Value::Absent,
             pending: None,
+            strbufs: Vec::new(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,

@@ -10,7 +10,9 @@ mod cond;
 mod divk;
 mod flow;
 mod num;
+mod place;
 mod simple;
+mod val;
 
 use std::sync::Arc;
 
@@ -123,13 +125,7 @@ impl Code {
 }
 
 fn routine(p: &Program, r: &Routine) -> CRoutine {
-    let cx = Cx {
-        p,
-        ret: match r.kind {
-            RoutineKind::Func(t) => Some(t),
-            _ => None,
-        },
-    };
+    let cx = Cx::new(p, r);
     let ret_num = match (r.simple, r.body.stmts.as_slice()) {
         (
             true,
@@ -139,7 +135,7 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
                     span,
                 },
             ],
-        ) if cx.ret == Some(Ty::NUM) => Some((num::num(p, e), *span)),
+        ) if cx.ret == Some(Ty::NUM) => Some((num::num(&cx, e), *span)),
         _ => None,
     };
     CRoutine {
@@ -155,20 +151,142 @@ pub(crate) fn loop_head(span: Span, to: &crate::ir::Expr, step: Option<&crate::i
     span.start_point().merge(step.unwrap_or(to).span)
 }
 
+fn set(v: &mut [Option<Ty>], slot: u32, ty: Ty) {
+    if let Some(t) = v.get_mut(slot as usize) {
+        *t = Some(ty);
+    }
+}
+
 /// The head of a WHILE statement at `span` (`WHILE cond DO`), where each iteration of an
 /// empty body is counted.
 pub(crate) fn while_head(span: Span, cond: &crate::ir::Expr) -> Span {
     span.start_point().merge(cond.span)
 }
 
-/// What statement compilation needs to know about the routine.
-struct Cx<'p> {
-    p: &'p Program,
+/// What compilation needs to know about the routine being compiled.
+pub(crate) struct Cx<'p> {
+    pub p: &'p Program,
     /// The FUNC's return type.
-    ret: Option<Ty>,
+    pub ret: Option<Ty>,
+    /// Types of the value slots (parameters, routine data, FOR variables).
+    slots: Vec<Option<Ty>>,
+    /// Types of the reference slots.
+    refs: Vec<Option<Ty>>,
 }
 
-impl Cx<'_> {
+impl<'p> Cx<'p> {
+    /// The context of routine `r`.
+    pub(crate) fn new(p: &'p Program, r: &Routine) -> Cx<'p> {
+        let mut slots = vec![None; r.n_slots as usize];
+        let mut refs = vec![None; r.n_refs as usize];
+        for q in &r.params {
+            match q.slot {
+                crate::ir::ParamSlot::Value(s) => set(&mut slots, s, q.ty),
+                crate::ir::ParamSlot::Ref(k) => set(&mut refs, k, q.ty),
+            }
+        }
+        for l in &r.locals {
+            set(&mut slots, l.slot, l.ty);
+        }
+        let mut blocks: Vec<&Block> = vec![&r.body];
+        blocks.extend(r.error.as_ref().map(|h| &h.body));
+        blocks.extend(r.undo.as_ref());
+        while let Some(b) = blocks.pop() {
+            for s in &b.stmts {
+                match &s.kind {
+                    StmtKind::For { slot, body, .. } => {
+                        set(&mut slots, *slot, Ty::NUM);
+                        blocks.push(body);
+                    }
+                    StmtKind::If {
+                        branches,
+                        else_body,
+                    } => {
+                        blocks.extend(branches.iter().map(|(_, b)| b));
+                        blocks.extend(else_body.as_ref());
+                    }
+                    StmtKind::While { body, .. } => blocks.push(body),
+                    StmtKind::Test { cases, default, .. } => {
+                        blocks.extend(cases.iter().map(|(_, b)| b));
+                        blocks.extend(default.as_ref());
+                    }
+                    _ => {}
+                }
+            }
+        }
+        Cx {
+            p,
+            ret: match r.kind {
+                RoutineKind::Func(t) => Some(t),
+                _ => None,
+            },
+            slots,
+            refs,
+        }
+    }
+
+    /// The type of a place, when it is known.
+    pub(crate) fn place_ty(&self, pl: &crate::ir::Place) -> Option<Ty> {
+        let mut ty = match pl.root {
+            crate::ir::Root::Local(s) => (*self.slots.get(s as usize)?)?,
+            crate::ir::Root::Ref(k) => (*self.refs.get(k as usize)?)?,
+            crate::ir::Root::Global(g) => self.p.globals.get(g as usize)?.ty,
+        };
+        for op in pl.path.iter() {
+            ty = match op {
+                crate::ir::PathOp::Field(f) if ty.rank == 0 => {
+                    self.p.types.fields(ty.base)?.get(*f as usize)?.ty
+                }
+                crate::ir::PathOp::Index(_) if ty.rank > 0 => ty.elem(),
+                _ => return None,
+            };
+        }
+        Some(ty)
+    }
+
+    /// The type of an expression, when it is known (what the compiler specialises on).
+    pub(crate) fn expr_ty(&self, e: &crate::ir::Expr) -> Option<Ty> {
+        use crate::ir::{BinOp::*, ExprKind as K, UnOp};
+        Some(match &e.kind {
+            K::Num(_) | K::SignalValue(_) | K::Errno | K::Intno | K::NumModDivK(..) => Ty::NUM,
+            K::ToNum(_) => Ty::NUM,
+            K::Dnum(_) | K::ToDnum(_) => Ty::DNUM,
+            K::Bool(_) | K::Present(_) => Ty::BOOL,
+            K::Str(_) => Ty::STRING,
+            K::Local(s) => (*self.slots.get(*s as usize)?)?,
+            K::Global(g) => self.p.globals.get(*g as usize)?.ty,
+            K::Load(pl) => self.place_ty(pl)?,
+            K::Field(b, f) => {
+                let t = self.expr_ty(b)?;
+                if t.rank > 0 {
+                    return None;
+                }
+                self.p.types.fields(t.base)?.get(*f as usize)?.ty
+            }
+            K::Unary(UnOp::NumNeg, _) => Ty::NUM,
+            K::Unary(UnOp::DnumNeg, _) => Ty::DNUM,
+            K::Unary(UnOp::Not, _) => Ty::BOOL,
+            K::Binary(op, ..) => match op {
+                NumAdd | NumSub | NumMul | NumDiv | NumIntDiv | NumMod => Ty::NUM,
+                DnumAdd | DnumSub | DnumMul | DnumDiv | DnumIntDiv | DnumMod => Ty::DNUM,
+                NumLt | NumLe | NumGt | NumGe | NumEq | NumNe | DnumLt | DnumLe | DnumGt
+                | DnumGe | And | Or | Xor | Eq | Ne => Ty::BOOL,
+                Concat => Ty::STRING,
+                _ => return None,
+            },
+            K::Call(r, _) => match self.p.routine(*r).kind {
+                RoutineKind::Func(t) => t,
+                _ => return None,
+            },
+            _ => return None,
+        })
+    }
+
+    /// Is `e` known to be a `num`?
+    pub(crate) fn is_num(&self, e: &crate::ir::Expr) -> bool {
+        self.expr_ty(e) == Some(Ty::NUM)
+    }
+
     fn block(&self, b: &Block) -> CBlock {
         CBlock {
             stmts: b.stmts.iter().map(|s| self.stmt(s)).collect(),
@@ -176,14 +294,52 @@ impl Cx<'_> {
         }
     }
 
+    /// The subject and case values of a TEST, specialised for `num` and for strings
+    /// against constants.
+    fn test_cases(
+        &self,
+        subject: &crate::ir::Expr,
+        cases: &[(Vec<crate::ir::Expr>, Block)],
+    ) -> flow::Cases {
+        let all = |f: &dyn Fn(&crate::ir::Expr) -> bool| {
+            cases.iter().all(|(vals, _)| vals.iter().all(f))
+        };
+        if self.is_num(subject) && all(&|e| self.is_num(e)) {
+            let vals = cases
+                .iter()
+                .map(|(vals, _)| vals.iter().map(|e| (num::num(self, e), e.span)).collect())
+                .collect();
+            return flow::Cases::Num((num::num(self, subject), subject.span), vals);
+        }
+        if self.expr_ty(subject) == Some(Ty::STRING)
+            && all(&|e| matches!(e.kind, crate::ir::ExprKind::Str(_)))
+        {
+            let vals = cases
+                .iter()
+                .map(|(vals, _)| {
+                    vals.iter()
+                        .filter_map(|e| match &e.kind {
+                            crate::ir::ExprKind::Str(s) => Some(s.clone()),
+                            _ => None,
+                        })
+                        .collect()
+                })
+                .collect();
+            return flow::Cases::Str(val::value(self, subject), vals);
+        }
+        flow::Cases::Any(
+            subject.clone(),
+            cases.iter().map(|(vals, _)| vals.clone().into()).collect(),
+        )
+    }
+
     fn stmt(&self, s: &Stmt) -> CStmt {
-        let p = self.p;
         let run: StmtFn = match &s.kind {
             StmtKind::AssignNum { place, value } => {
-                assign::num_into(p, value, assign::Sink::of(place))
+                assign::num_into(self, value, assign::Sink::of(self, place))
             }
             StmtKind::Call { routine, args } => {
-                let call = CCall::new(p, *routine, args, s.span);
+                let call = CCall::new(self, *routine, args, s.span);
                 Box::new(move |it, c| it.ccall(c, &call).map(drop))
             }
             StmtKind::If {
@@ -192,7 +348,7 @@ impl Cx<'_> {
             } => {
                 let branches: Box<[(BoolFn, CBlock)]> = branches
                     .iter()
-                    .map(|(e, b)| (cond::cond(p, e), self.block(b)))
+                    .map(|(e, b)| (cond::cond(self, e), self.block(b)))
                     .collect();
                 let else_body = else_body.as_ref().map(|b| self.block(b));
                 Box::new(move |it, c| {
@@ -209,7 +365,7 @@ impl Cx<'_> {
             }
             StmtKind::While { cond, body } => {
                 let head = while_head(s.span, cond);
-                let cond = cond::cond(p, cond);
+                let cond = cond::cond(self, cond);
                 let body = self.block(body);
                 if body.stmts.is_empty() {
                     // No statement counts the iterations: the loop head does.
@@ -237,9 +393,9 @@ impl Cx<'_> {
             } => {
                 let f = flow::CFor {
                     slot: *slot,
-                    from: (num::num(p, from), from.span),
-                    to: (num::num(p, to), to.span),
-                    step: step.as_ref().map(|e| (num::num(p, e), e.span)),
+                    from: (num::num(self, from), from.span),
+                    to: (num::num(self, to), to.span),
+                    step: step.as_ref().map(|e| (num::num(self, e), e.span)),
                     body: self.block(body),
                     span: s.span,
                     head: loop_head(s.span, to, step.as_ref()),
@@ -252,18 +408,17 @@ impl Cx<'_> {
                 default,
             } => {
                 let t = flow::CTest {
-                    subject: subject.clone(),
-                    cases: cases
-                        .iter()
-                        .map(|(vals, b)| (vals.clone().into(), self.block(b)))
-                        .collect(),
+                    cases: self.test_cases(subject, cases),
+                    bodies: cases.iter().map(|(_, b)| self.block(b)).collect(),
                     default: default.as_ref().map(|b| self.block(b)),
                 };
                 Box::new(move |it, c| it.exec_ctest(c, &t))
             }
+            StmtKind::Assign { place, value } => val::assign(self, place, value),
             StmtKind::Return(Some(e)) if self.ret == Some(Ty::NUM) => {
-                assign::num_into(p, e, assign::Sink::Return)
+                assign::num_into(self, e, assign::Sink::Return)
             }
+            StmtKind::Return(Some(e)) => val::ret(self, e),
             _ => {
                 let s = s.clone();
                 Box::new(move |it, c| it.exec_stmt(&c.prog, &s))

@@ -55,7 +55,7 @@ pub(crate) enum WalkErr {
     Shape,
 }
 
-fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
+pub(crate) fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
     match v {
         Value::Record(fs) => fs.get(f as usize).ok_or(WalkErr::Shape),
         Value::Absent => Err(WalkErr::NotPresent),
@@ -63,7 +63,7 @@ fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
     }
 }
 
-fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
+pub(crate) fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
     match v {
         Value::Record(fs) => fs.get_mut(f as usize).ok_or(WalkErr::Shape),
         Value::Absent => Err(WalkErr::NotPresent),
@@ -71,7 +71,7 @@ fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
     }
 }
 
-fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
+pub(crate) fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
     match v {
         Value::Array(a) => match a.offset(idx) {
             Some(o) => a.data.get(o).ok_or(WalkErr::Shape),
@@ -82,7 +82,7 @@ fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
     }
 }
 
-fn oob(a: &Array, idx: &[i64]) -> WalkErr {
+pub(crate) fn oob(a: &Array, idx: &[i64]) -> WalkErr {
     WalkErr::OutOfBounds {
         idx: idx.to_vec(),
         dims: a.sizes().to_vec(),
@@ -100,7 +100,7 @@ fn step(v: &Value, s: Step) -> Result<&Value, WalkErr> {
     }
 }
 
-fn step_mut(v: &mut Value, s: Step) -> Result<&mut Value, WalkErr> {
+pub(crate) fn step_mut(v: &mut Value, s: Step) -> Result<&mut Value, WalkErr> {
     match s {
         Step::Field(f) => field_mut(v, f),
         Step::Elem(o) => match v {
@@ -434,7 +434,7 @@ impl Interp {
         }
     }
 
-    fn dims_error(&self, span: Span) -> super::Unwind {
+    pub(crate) fn dims_error(&self, span: Span) -> super::Unwind {
         self.error(
             errnum::ERR_NOTEQDIM,
             span,
@@ -444,7 +444,7 @@ impl Interp {
 }
 
 /// Arrays may only be replaced by arrays of the same sizes.
-fn same_dims(old: &Value, new: &Value) -> bool {
+pub(crate) fn same_dims(old: &Value, new: &Value) -> bool {
     match (old, new) {
         (Value::Array(a), Value::Array(b)) => a.dims == b.dims && a.rank == b.rank,
         _ => true,

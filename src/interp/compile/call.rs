@@ -1,12 +1,12 @@
 //! Calls of user routines from compiled code: `num` arguments evaluated inline, the others
 //! (values of other types, references, absent and conditional arguments) as lowered.
 
-use super::Code;
+use super::{Code, Cx};
 use super::num::{Opnd, Src, opnd};
 use crate::interp::Interp;
 use crate::interp::error::{ErrorKind, Exec};
 use crate::interp::value::Value;
-use crate::ir::{Arg, ParamSlot, Program, RoutineId, Ty};
+use crate::ir::{Arg, ParamSlot, RoutineId, Ty};
 use crate::source::Span;
 
 /// A compiled call of a user routine.
@@ -25,15 +25,15 @@ enum CArg {
 }
 
 impl CCall {
-    pub(crate) fn new(p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> CCall {
-        let r = p.routine(rid);
+    pub(crate) fn new(cx: &Cx, rid: RoutineId, args: &[Arg], span: Span) -> CCall {
+        let r = cx.p.routine(rid);
         let cargs = r
             .params
             .iter()
             .zip(args.iter())
             .map(|(param, arg)| match (param.slot, arg) {
                 (ParamSlot::Value(_), Arg::Value(e)) if param.ty == Ty::NUM => {
-                    CArg::Num(opnd(p, e), e.span)
+                    CArg::Num(opnd(cx, e), e.span)
                 }
                 _ => CArg::Ir(arg.clone()),
             })

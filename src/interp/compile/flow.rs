@@ -1,9 +1,13 @@
 //! Running compiled blocks, FOR and TEST on the skeleton they share with the tree-walking
 //! engine (`Interp::run_block`, `Interp::for_loop`, `Interp::test_case` in `stmt.rs`).
 
+use std::sync::Arc;
+
+use super::val::ValFn;
 use super::{CBlock, Code, NumFn};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
+use crate::interp::value::{Value, values_equal};
 use crate::ir::Expr;
 use crate::source::Span;
 
@@ -19,11 +23,21 @@ pub(crate) struct CFor {
     pub head: Span,
 }
 
-/// A compiled TEST: the subject and case values as lowered, the bodies compiled.
+/// A compiled TEST: the subject and the case values, the bodies compiled.
 pub(crate) struct CTest {
-    pub subject: Expr,
-    pub cases: Box<[(Box<[Expr]>, CBlock)]>,
+    pub cases: Cases,
+    pub bodies: Box<[CBlock]>,
     pub default: Option<CBlock>,
+}
+
+/// The subject of a TEST and its case values, one list per CASE.
+pub(crate) enum Cases {
+    /// A `num` subject with `num` case values, compared as numbers.
+    Num((NumFn, Span), Box<[Box<[(NumFn, Span)]>]>),
+    /// A string subject with constant case strings.
+    Str(ValFn, Box<[Box<[Arc<str>]>]>),
+    /// Anything else, as lowered (structural equality).
+    Any(Expr, Box<[Box<[Expr]>]>),
 }
 
 impl Interp {
@@ -66,9 +80,34 @@ impl Interp {
 
     pub(crate) fn exec_ctest(&mut self, c: &Code, t: &CTest) -> Exec<()> {
         let p = &*c.prog;
-        let v = self.eval(p, &t.subject)?;
-        match self.test_case(p, &v, t.cases.iter().map(|(vals, _)| &vals[..]))? {
-            Some(k) => self.exec_cblock(c, &t.cases[k].1),
+        let hit = match &t.cases {
+            Cases::Num(subject, cases) => {
+                let x = self.cnum(c, subject)?;
+                let mut hit = None;
+                'cases: for (k, vals) in cases.iter().enumerate() {
+                    for v in vals.iter() {
+                        if self.cnum(c, v)? == x {
+                            hit = Some(k);
+                            break 'cases;
+                        }
+                    }
+                }
+                hit
+            }
+            Cases::Str(subject, cases) => match subject(self, c)? {
+                Value::Str(s) => cases.iter().position(|vals| vals.iter().any(|v| *v == s)),
+                other => cases.iter().position(|vals| {
+                    vals.iter()
+                        .any(|v| values_equal(&other, &Value::Str(v.clone())))
+                }),
+            },
+            Cases::Any(subject, cases) => {
+                let v = self.eval(p, subject)?;
+                self.test_case(p, &v, cases.iter().map(|vals| &vals[..]))?
+            }
+        };
+        match hit.and_then(|k| t.bodies.get(k)) {
+            Some(b) => self.exec_cblock(c, b),
             None => match &t.default {
                 Some(b) => self.exec_cblock(c, b),
                 None => Ok(()),
