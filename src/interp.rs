@@ -160,6 +160,10 @@ pub struct Interp {
     pending: Option<Unwind>,
     /// Buffers for building strings (kept for reuse).
     strbufs: Vec<String>,
+    /// Late-bound calls: the procedure name being looked up, and the arguments of each
+    /// call site (by its argument list's address) matched to each procedure called there.
+    late_name: String,
+    late_args: std::collections::HashMap<(usize, u32), Arc<[crate::ir::Arg]>>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -232,6 +236,8 @@ impl Interp {
             ret: Value::Absent,
             pending: None,
             strbufs: Vec::new(),
+            late_name: String::new(),
+            late_args: std::collections::HashMap::new(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,

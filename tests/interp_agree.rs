@@ -463,7 +463,10 @@ mod generated {
                         };
                         let args = self.proc_args(0);
                         if self.pick(3) == 0 {
-                            let name = format!("\"p\" + NumToStr({}, 0)", self.pick(2));
+                            // Never a recursion: how deep one may go depends on the Rust
+                            // stack each engine uses per call.
+                            let k = if self.scope == Scope::Main { self.pick(2) } else { 0 };
+                            let name = format!("\"p\" + NumToStr({k}, 0)");
                             self.line(ind, &format!("%{name}% {args};"));
                         } else {
                             self.line(ind, &format!("{callee} {args};"));

@@ -31,6 +31,29 @@ impl Interp {
         self.stack_base.saturating_sub(stack_addr()) > self.stack_budget
     }
 
+    /// A call at `span` may nest one level deeper, unless the call depth or the Rust stack
+    /// used by the run is at its limit.
+    #[inline(always)]
+    pub(crate) fn check_depth(&self, span: Span) -> Exec<()> {
+        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
+            return Err(self.too_deep(span));
+        }
+        Ok(())
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn too_deep(&self, span: Span) -> Unwind {
+        self.fatal(
+            ErrorKind::Aborted,
+            span,
+            format!(
+                "calls nested {} levels deep: the interpreter's stack is used up (runaway recursion?)",
+                self.frames.len()
+            ),
+        )
+    }
+
     /// Push a value onto the value stack. Slots above the top keep their last values (they
     /// are reused by the next frame instead of being dropped and pushed again).
     #[inline(always)]
@@ -93,16 +116,7 @@ impl Interp {
         span: Span,
     ) -> Exec<Value> {
         let r = p.routine(rid);
-        if self.frames.len() >= MAX_DEPTH || self.stack_exhausted() {
-            return Err(self.fatal(
-                ErrorKind::Aborted,
-                span,
-                format!(
-                    "calls nested {} levels deep: the interpreter's stack is used up (runaway recursion?)",
-                    self.frames.len()
-                ),
-            ));
-        }
+        self.check_depth(span)?;
         let bp = self.sp;
         let rbp = self.refs.len();
         if let Err(u) = self.push_args(p, r, args) {
@@ -388,7 +402,10 @@ impl Interp {
         })
     }
 
-    /// `% name % args;`: find the procedure at run time and call it.
+    /// `% name % args;`: find the procedure at run time and call it. Value arguments are
+    /// evaluated once, in parameter order, and checked against the parameter types before
+    /// the call; the matching of arguments to parameters is kept per call site and
+    /// procedure.
     pub(crate) fn late_call(
         &mut self,
         p: &Program,
@@ -401,20 +418,21 @@ impl Interp {
             Some((m, r)) => (Some(m.trim()), r.trim()),
             None => (None, name.trim()),
         };
-        let found = p
-            .procs_by_name
-            .get(&procname.to_ascii_uppercase())
-            .and_then(|list| {
-                list.iter().copied().find(|&rid| {
-                    let r = p.routine(rid);
-                    let mname = &p.modules[r.module.0 as usize].name;
-                    let module_ok = match modname {
-                        Some(m) => mname.eq_ignore_ascii_case(m),
-                        None => !r.local || r.module == module,
-                    };
-                    module_ok && r.kind == RoutineKind::Proc
-                })
-            });
+        let mut key = std::mem::take(&mut self.late_name);
+        key.clear();
+        key.extend(procname.chars().map(|c| c.to_ascii_uppercase()));
+        let found = p.procs_by_name.get(key.as_str()).and_then(|list| {
+            list.iter().copied().find(|&rid| {
+                let r = p.routine(rid);
+                let mname = &p.modules[r.module.0 as usize].name;
+                let module_ok = match modname {
+                    Some(m) => mname.eq_ignore_ascii_case(m),
+                    None => !r.local || r.module == module,
+                };
+                module_ok && r.kind == RoutineKind::Proc
+            })
+        });
+        self.late_name = key;
         let Some(rid) = found else {
             return Err(self.error(
                 errnum::ERR_REFUNKPRC,
@@ -422,6 +440,80 @@ impl Interp {
                 format!("there is no procedure `{name}`"),
             ));
         };
+        let site = (args.as_ptr() as usize, rid.0);
+        let lowered = match self.late_args.get(&site) {
+            Some(l) => l.clone(),
+            None => {
+                let l: std::sync::Arc<[Arg]> = self.lower_late_args(p, rid, args, span)?.into();
+                self.late_args.insert(site, l.clone());
+                l
+            }
+        };
+        let r = p.routine(rid);
+        if let Some(q) = r
+            .params
+            .iter()
+            .zip(lowered.iter())
+            .find(|(q, a)| !q.optional && matches!(a, Arg::Absent))
+        {
+            return Err(self.error(
+                errnum::ERR_CALLPROC,
+                span,
+                format!("argument for `{}` of `{}` is missing", q.0.name, r.name),
+            ));
+        }
+        // Value arguments, checked against the parameter types before the call.
+        let mut values = Vec::with_capacity(lowered.len());
+        for (q, a) in r.params.iter().zip(lowered.iter()) {
+            if let Arg::Value(e) = a {
+                let v = self.eval(p, e)?;
+                if !super::pers::fits(&p.types, q.ty, &v) {
+                    return Err(self.error(
+                        errnum::ERR_CALLPROC,
+                        e.span,
+                        format!(
+                            "argument for `{}` of `{}` must be {}",
+                            q.name,
+                            r.name,
+                            p.types.display(q.ty)
+                        ),
+                    ));
+                }
+                values.push(v);
+            }
+        }
+        self.check_depth(span)?;
+        let bp = self.sp;
+        let rbp = self.refs.len();
+        let mut values = values.into_iter();
+        for (param, arg) in r.params.iter().zip(lowered.iter()) {
+            let res = match (param.slot, arg) {
+                (ParamSlot::Value(_), Arg::Value(_)) => {
+                    let v = values.next().unwrap_or(Value::Absent);
+                    self.push_value(v);
+                    Ok(())
+                }
+                (ParamSlot::Value(_), a) => self.arg_value(p, a).map(|v| self.push_value(v)),
+                (ParamSlot::Ref(_), a) => self.arg_ref(p, a).map(|a| self.refs.push(a)),
+            };
+            if let Err(u) = res {
+                self.sp = bp;
+                self.refs.truncate(rbp);
+                return Err(u);
+            }
+        }
+        let code = self.code.clone();
+        self.enter(&code, rid, bp, rbp, span).map(|_| ())
+    }
+
+    /// The arguments of a late-bound call matched to the parameters of `rid`.
+    fn lower_late_args(
+        &self,
+        p: &Program,
+        rid: RoutineId,
+        args: &[crate::ir::LateArg],
+        _span: Span,
+    ) -> Exec<Vec<Arg>> {
         let r = p.routine(rid);
         let mut lowered: Vec<Arg> = vec![Arg::Absent; r.params.len()];
         let mut next_req = 0usize;
@@ -470,36 +562,6 @@ impl Interp {
                 }
             };
         }
-        if let Some(q) = r
-            .params
-            .iter()
-            .zip(&lowered)
-            .find(|(q, a)| !q.optional && matches!(a, Arg::Absent))
-        {
-            return Err(self.error(
-                errnum::ERR_CALLPROC,
-                span,
-                format!("argument for `{}` of `{}` is missing", q.0.name, r.name),
-            ));
-        }
-        // Check value arguments against the parameter types before the call.
-        for (q, a) in r.params.iter().zip(&lowered) {
-            if let Arg::Value(e) = a {
-                let v = self.eval(p, e)?;
-                if !super::pers::fits(&p.types, q.ty, &v) {
-                    return Err(self.error(
-                        errnum::ERR_CALLPROC,
-                        e.span,
-                        format!(
-                            "argument for `{}` of `{}` must be {}",
-                            q.name,
-                            r.name,
-                            p.types.display(q.ty)
-                        ),
-                    ));
-                }
-            }
-        }
-        self.call_routine(p, rid, &lowered, span).map(|_| ())
+        Ok(lowered)
     }
 }

@@ -301,9 +301,8 @@ impl<'p> Cx<'p> {
         subject: &crate::ir::Expr,
         cases: &[(Vec<crate::ir::Expr>, Block)],
     ) -> flow::Cases {
-        let all = |f: &dyn Fn(&crate::ir::Expr) -> bool| {
-            cases.iter().all(|(vals, _)| vals.iter().all(f))
-        };
+        let all =
+            |f: &dyn Fn(&crate::ir::Expr) -> bool| cases.iter().all(|(vals, _)| vals.iter().all(f));
         if self.is_num(subject) && all(&|e| self.is_num(e)) {
             let vals = cases
                 .iter()

@@ -1,10 +1,10 @@
 //! Calls of user routines from compiled code: `num` arguments evaluated inline, the others
 //! (values of other types, references, absent and conditional arguments) as lowered.
 
-use super::{Code, Cx};
 use super::num::{Opnd, Src, opnd};
+use super::{Code, Cx};
 use crate::interp::Interp;
-use crate::interp::error::{ErrorKind, Exec};
+use crate::interp::error::Exec;
 use crate::interp::value::Value;
 use crate::ir::{Arg, ParamSlot, RoutineId, Ty};
 use crate::source::Span;
@@ -50,16 +50,7 @@ impl Interp {
     /// Call a user routine from compiled code; returns the FUNC result (or `Absent`).
     pub(crate) fn ccall(&mut self, c: &Code, call: &CCall) -> Exec<Value> {
         let p = &*c.prog;
-        if self.frames.len() >= crate::interp::call::MAX_DEPTH || self.stack_exhausted() {
-            return Err(self.fatal(
-                ErrorKind::Aborted,
-                call.span,
-                format!(
-                    "calls nested {} levels deep: the interpreter's stack is used up (runaway recursion?)",
-                    self.frames.len()
-                ),
-            ));
-        }
+        self.check_depth(call.span)?;
         let r = p.routine(call.rid);
         let bp = self.sp;
         let rbp = self.refs.len();

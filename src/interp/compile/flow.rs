@@ -30,10 +30,13 @@ pub(crate) struct CTest {
     pub default: Option<CBlock>,
 }
 
+/// A compiled `num` and its span.
+pub(crate) type SpannedNum = (NumFn, Span);
+
 /// The subject of a TEST and its case values, one list per CASE.
 pub(crate) enum Cases {
     /// A `num` subject with `num` case values, compared as numbers.
-    Num((NumFn, Span), Box<[Box<[(NumFn, Span)]>]>),
+    Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
     /// A string subject with constant case strings.
     Str(ValFn, Box<[Box<[Arc<str>]>]>),
     /// Anything else, as lowered (structural equality).
@@ -95,7 +98,7 @@ impl Interp {
                 hit
             }
             Cases::Str(subject, cases) => match subject(self, c)? {
-                Value::Str(s) => cases.iter().position(|vals| vals.iter().any(|v| *v == s)),
+                Value::Str(s) => cases.iter().position(|vals| vals.contains(&s)),
                 other => cases.iter().position(|vals| {
                     vals.iter()
                         .any(|v| values_equal(&other, &Value::Str(v.clone())))

@@ -290,7 +290,9 @@ pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
             let o = opnd(cx, e);
             Box::new(move |it, c| o.get(it, c))
         }
-        ExprKind::Binary(op, a, b) if op.is_num_arith() => arith(*op, opnd(cx, a), opnd(cx, b), span),
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
+            arith(*op, opnd(cx, a), opnd(cx, b), span)
+        }
         ExprKind::NumModDivK(a, k, is_mod) => {
             let (a, d, is_mod) = (opnd(cx, a), DivK::new(*k), *is_mod);
             Box::new(move |it, c| {

@@ -5,8 +5,8 @@
 //! then evaluated again with its frame, so hooks, interrupts and errors see exactly what
 //! the general path shows.
 
-use super::{Code, Cx};
 use super::num::{NumFn, Opnd, Src, num, opnd};
+use super::{Code, Cx};
 use crate::interp::Interp;
 use crate::interp::call::MAX_DEPTH;
 use crate::ir::{Arg, Expr, ExprKind, PathOp, RoutineId, Stmt, StmtKind, Ty};

@@ -129,7 +129,12 @@ fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
         cur = a;
     }
     let mut parts = vec![(StrPart::new(cx, cur), cur.span)];
-    parts.extend(spine.into_iter().rev().map(|(b, span)| (StrPart::new(cx, b), span)));
+    parts.extend(
+        spine
+            .into_iter()
+            .rev()
+            .map(|(b, span)| (StrPart::new(cx, b), span)),
+    );
     parts.into()
 }
 
