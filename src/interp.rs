@@ -129,7 +129,7 @@ struct Frame {
 
 /// An argument of a native call.
 #[derive(Debug, Clone)]
-enum NArg {
+pub(crate) enum NArg {
     Absent,
     Val(Value),
     Ref(AbsPlace),

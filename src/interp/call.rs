@@ -366,6 +366,19 @@ impl Interp {
                 }
             }
         }
+        self.invoke_native(p, nid, base, args, span)
+    }
+
+    /// Run native `nid` on the arguments in `self.nargs` from `base` (removed after the
+    /// call); `args` is the call as lowered.
+    pub(crate) fn invoke_native(
+        &mut self,
+        p: &Program,
+        nid: NativeId,
+        base: usize,
+        args: &[Arg],
+        span: Span,
+    ) -> Exec<Value> {
         if let Some(f) = self.frames.last_mut() {
             f.at = span;
         }
@@ -386,7 +399,7 @@ impl Interp {
         r
     }
 
-    fn native_arg(&mut self, p: &Program, arg: &Arg) -> Exec<NArg> {
+    pub(crate) fn native_arg(&mut self, p: &Program, arg: &Arg) -> Exec<NArg> {
         Ok(match arg {
             Arg::Absent => NArg::Absent,
             Arg::Switch => NArg::Switch,

@@ -414,6 +414,10 @@ impl<'p> Cx<'p> {
                 Box::new(move |it, c| it.exec_ctest(c, &t))
             }
             StmtKind::Assign { place, value } => val::assign(self, place, value),
+            StmtKind::Native { native, args } => {
+                let call = call::CNative::new(self, *native, args, s.span);
+                Box::new(move |it, c| it.cnative(c, &call).map(drop))
+            }
             StmtKind::Return(Some(e)) if self.ret == Some(Ty::NUM) => {
                 assign::num_into(self, e, assign::Sink::Return)
             }

@@ -6,7 +6,9 @@ use super::{Code, Cx};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
 use crate::interp::value::Value;
-use crate::ir::{Arg, ParamSlot, RoutineId, Ty};
+use super::val::{ValFn, value};
+use crate::interp::NArg;
+use crate::ir::{Arg, NativeId, ParamSlot, RoutineId, Ty};
 use crate::source::Span;
 
 /// A compiled call of a user routine.
@@ -77,5 +79,61 @@ impl Interp {
             }
         }
         self.enter(c, call.rid, bp, rbp, call.span)
+    }
+}
+
+/// A compiled call of a native: value arguments evaluated by their compiled form.
+pub(crate) struct CNative {
+    nid: NativeId,
+    args: Box<[NArgC]>,
+    /// The arguments as lowered (what the native sees of its call).
+    ir_args: Box<[Arg]>,
+    span: Span,
+}
+
+/// A compiled argument of a native.
+enum NArgC {
+    /// A value (IN) argument.
+    Val(ValFn),
+    /// Anything else (absent, switch, reference, conditional), as lowered.
+    Ir(Arg),
+}
+
+impl CNative {
+    pub(crate) fn new(cx: &Cx, nid: NativeId, args: &[Arg], span: Span) -> CNative {
+        CNative {
+            nid,
+            args: args
+                .iter()
+                .map(|a| match a {
+                    Arg::Value(e) => NArgC::Val(value(cx, e)),
+                    other => NArgC::Ir(other.clone()),
+                })
+                .collect(),
+            ir_args: args.into(),
+            span,
+        }
+    }
+}
+
+impl Interp {
+    /// Call a native from compiled code.
+    pub(crate) fn cnative(&mut self, c: &Code, n: &CNative) -> Exec<Value> {
+        let p = &*c.prog;
+        let base = self.nargs.len();
+        for arg in n.args.iter() {
+            let a = match arg {
+                NArgC::Val(f) => f(self, c).map(NArg::Val),
+                NArgC::Ir(a) => self.native_arg(p, a),
+            };
+            match a {
+                Ok(a) => self.nargs.push(a),
+                Err(u) => {
+                    self.nargs.truncate(base);
+                    return Err(u);
+                }
+            }
+        }
+        self.invoke_native(p, n.nid, base, &n.ir_args, n.span)
     }
 }

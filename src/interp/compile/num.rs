@@ -316,6 +316,13 @@ pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
                 })
             }
         }
+        ExprKind::Native(n, args) => {
+            let call = super::call::CNative::new(cx, *n, args, span);
+            Box::new(move |it, c| {
+                let r = it.cnative(c, &call);
+                it.nf_of(r, span)
+            })
+        }
         _ => fallback(e),
     }
 }

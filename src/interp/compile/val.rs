@@ -36,6 +36,10 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
             let p = CPlace::new(cx, pl);
             Box::new(move |it, c| p.load(it, c))
         }
+        ExprKind::Native(n, args) => {
+            let call = super::call::CNative::new(cx, *n, args, span);
+            Box::new(move |it, c| it.cnative(c, &call))
+        }
         _ if cx.is_num(e) => {
             let f = num(cx, e);
             Box::new(move |it, c| {
