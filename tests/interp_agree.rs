@@ -265,7 +265,10 @@ mod generated {
                         _ => format!("f0({a}, {b} \\o:={})", self.num(d + 1)),
                     }
                 }
-                14 => format!("Abs({})", self.num(d + 1)),
+                14 => match self.pick(2) {
+                    0 => format!("Abs({})", self.num(d + 1)),
+                    _ => format!("mk({}, {}).n", self.num(d + 1), self.string(d + 1)),
+                },
                 _ => format!("DnumToNum(gd * {})", self.num(d + 1)),
             }
         }
@@ -371,8 +374,9 @@ mod generated {
                 }
                 6 => {
                     let l = self.record_place(0);
-                    let r = match self.pick(2) {
+                    let r = match self.pick(3) {
                         0 => self.record_place(0),
+                        1 => format!("mk({}, {})", self.num(1), self.string(1)),
                         _ => format!("[{}, {}, {}]", self.num(1), self.string(1), self.cond(1)),
                     };
                     self.line(ind, &format!("{l} := {r};"));
@@ -612,6 +616,15 @@ mod generated {
   ENDFUNC
   FUNC num garr(num i)
     RETURN g{i};
+  ENDFUNC
+  FUNC item mk(num n, string s)
+    VAR item r;
+    VAR num k{2};
+    r.n := n + k{1};
+    r.s := s;
+    r.b := n > 2;
+    k{2} := n;
+    RETURN r;
   ENDFUNC
 "#;
 

@@ -199,8 +199,9 @@ impl Interp {
         });
         let saved = (self.bp, self.rbp);
         (self.bp, self.rbp) = (bp, rbp);
-        let res = match self.init_locals(p, r, bp) {
-            Ok(()) => match c.routines.get(rid.0 as usize) {
+        let cr = c.routines.get(rid.0 as usize);
+        let res = match self.init_locals(c, r, cr, bp) {
+            Ok(()) => match cr {
                 Some(cr) if !c.tree_walk => self.exec_cblock(c, &cr.body),
                 _ => self.exec_block(p, &r.body),
             },
@@ -271,15 +272,31 @@ impl Interp {
         }
     }
 
-    fn init_locals(&mut self, p: &Program, r: &Routine, bp: usize) -> Exec<()> {
+    fn init_locals(
+        &mut self,
+        c: &super::compile::Code,
+        r: &Routine,
+        cr: Option<&super::compile::CRoutine>,
+        bp: usize,
+    ) -> Exec<()> {
         // Routine data and FOR variables start as 0 until initialised.
         while self.sp < bp + r.n_slots as usize {
             self.push_num(0.0);
         }
-        for l in &r.locals {
-            let v = match &l.init {
-                Some(e) => self.eval(p, e)?,
-                None => default_value(&p.types, l.ty, &l.dims),
+        for (k, l) in r.locals.iter().enumerate() {
+            let cl = cr.and_then(|cr| cr.locals.get(k));
+            let v = match (cl, &l.init) {
+                (Some(super::compile::CLocal { init: Some(f), .. }), _) => f(self, c)?,
+                (_, Some(e)) => self.eval(&c.prog, e)?,
+                (Some(cl), None) => {
+                    // The slot usually still holds this data from the last call: reset
+                    // it in place (no allocation for records and arrays).
+                    if let Some(slot) = self.stack.get_mut(bp + l.slot as usize) {
+                        slot.reset_from(&cl.default);
+                    }
+                    continue;
+                }
+                (None, None) => default_value(&c.prog.types, l.ty, &l.dims),
             };
             if let Some(slot) = self.stack.get_mut(bp + l.slot as usize) {
                 *slot = v;

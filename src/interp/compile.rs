@@ -49,6 +49,24 @@ pub(crate) struct CRoutine {
     /// For a simple `FUNC num` (see [`Routine::simple`]): the returned expression and the
     /// span of the `RETURN` statement.
     pub ret_num: Option<(NumFn, Span)>,
+    /// Its routine data in declaration order, as each call initialises them.
+    pub locals: Box<[CLocal]>,
+}
+
+/// A routine data declaration: the value it starts with, or its compiled initial value
+/// (none for the tree-walking engine, which evaluates the declaration's expression).
+pub(crate) struct CLocal {
+    pub default: crate::interp::Value,
+    pub init: Option<val::ValFn>,
+}
+
+impl CLocal {
+    fn of(cx: &Cx, l: &crate::ir::LocalDecl) -> CLocal {
+        CLocal {
+            default: crate::interp::value::default_value(&cx.p.types, l.ty, &l.dims),
+            init: l.init.as_ref().map(|e| val::value(cx, e)),
+        }
+    }
 }
 
 /// What a call of a routine adds to the task's data, in values ([`crate::ir::limits`]).
@@ -113,6 +131,18 @@ impl Code {
                     },
                     frame: FrameData::of(&prog, r),
                     ret_num: None,
+                    locals: r
+                        .locals
+                        .iter()
+                        .map(|l| CLocal {
+                            default: crate::interp::value::default_value(
+                                &prog.types,
+                                l.ty,
+                                &l.dims,
+                            ),
+                            init: None,
+                        })
+                        .collect(),
                 },
             })
             .collect();
@@ -142,6 +172,7 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
         body: cx.block(&r.body),
         frame: FrameData::of(p, r),
         ret_num,
+        locals: r.locals.iter().map(|l| CLocal::of(&cx, l)).collect(),
     }
 }
 

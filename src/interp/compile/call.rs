@@ -22,6 +22,8 @@ pub(crate) struct CCall {
 enum CArg {
     /// A `num` value for an IN parameter, and the expression's span.
     Num(Opnd, Span),
+    /// A value of another type for an IN parameter.
+    Val(ValFn),
     /// Anything else, as lowered.
     Ir(Arg),
 }
@@ -37,6 +39,7 @@ impl CCall {
                 (ParamSlot::Value(_), Arg::Value(e)) if param.ty == Ty::NUM => {
                     CArg::Num(opnd(cx, e), e.span)
                 }
+                (ParamSlot::Value(_), Arg::Value(e)) => CArg::Val(value(cx, e)),
                 _ => CArg::Ir(arg.clone()),
             })
             .collect();
@@ -67,6 +70,7 @@ impl Interp {
                         Ok(())
                     }
                 }
+                (_, CArg::Val(f)) => f(self, c).map(|v| self.push_value(v)),
                 (ParamSlot::Value(_), CArg::Ir(a)) => {
                     self.arg_value(p, a).map(|v| self.push_value(v))
                 }

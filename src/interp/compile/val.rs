@@ -40,6 +40,29 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
             let call = super::call::CNative::new(cx, *n, args, span);
             Box::new(move |it, c| it.cnative(c, &call))
         }
+        ExprKind::Record(es) => {
+            let es: Box<[ValFn]> = es.iter().map(|e| value(cx, e)).collect();
+            Box::new(move |it, c| {
+                let mut out = Vec::with_capacity(es.len());
+                for f in es.iter() {
+                    out.push(f(it, c)?);
+                }
+                Ok(Value::Record(out.into_boxed_slice()))
+            })
+        }
+        ExprKind::Field(base, i) => {
+            let (b, i) = (value(cx, base), *i as usize);
+            Box::new(move |it, c| match b(it, c)? {
+                Value::Record(mut fs) if i < fs.len() => {
+                    Ok(std::mem::replace(&mut fs[i], Value::Absent))
+                }
+                other => Err(it.type_bug(span, "record", &other)),
+            })
+        }
+        ExprKind::Call(r, args) if !cx.is_num(e) => {
+            let call = super::CCall::new(cx, *r, args, span);
+            Box::new(move |it, c| it.ccall(c, &call))
+        }
         _ if cx.is_num(e) => {
             let f = num(cx, e);
             Box::new(move |it, c| {
