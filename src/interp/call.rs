@@ -279,10 +279,14 @@ impl Interp {
         cr: Option<&super::compile::CRoutine>,
         bp: usize,
     ) -> Exec<()> {
-        // Routine data and FOR variables start as 0 until initialised.
-        while self.sp < bp + r.n_slots as usize {
-            self.push_num(0.0);
+        // The frame's slots past its arguments. Routine data are set below (from the last
+        // call's value, in place, when it is still there); a FOR variable is set before its
+        // body can read it.
+        let top = bp + r.n_slots as usize;
+        if self.stack.len() < top {
+            self.stack.resize(top, Value::Num(0.0));
         }
+        self.sp = self.sp.max(top);
         for (k, l) in r.locals.iter().enumerate() {
             let cl = cr.and_then(|cr| cr.locals.get(k));
             let v = match (cl, &l.init) {

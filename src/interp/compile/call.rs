@@ -6,6 +6,7 @@ use super::{Code, Cx};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
 use crate::interp::value::Value;
+use super::place::CPlace;
 use super::val::{ValFn, value};
 use crate::interp::NArg;
 use crate::ir::{Arg, NativeId, ParamSlot, RoutineId, Ty};
@@ -24,6 +25,9 @@ enum CArg {
     Num(Opnd, Span),
     /// A value of another type for an IN parameter.
     Val(ValFn),
+    /// Data of another type for an IN parameter, copied into the slot (reusing what the
+    /// slot holds from the last call).
+    Copy(Copied),
     /// Anything else, as lowered.
     Ir(Arg),
 }
@@ -39,7 +43,10 @@ impl CCall {
                 (ParamSlot::Value(_), Arg::Value(e)) if param.ty == Ty::NUM => {
                     CArg::Num(opnd(cx, e), e.span)
                 }
-                (ParamSlot::Value(_), Arg::Value(e)) => CArg::Val(value(cx, e)),
+                (ParamSlot::Value(_), Arg::Value(e)) => match Copied::of(cx, e) {
+                    Some(src) => CArg::Copy(src),
+                    None => CArg::Val(value(cx, e)),
+                },
                 _ => CArg::Ir(arg.clone()),
             })
             .collect();
@@ -71,6 +78,7 @@ impl Interp {
                     }
                 }
                 (_, CArg::Val(f)) => f(self, c).map(|v| self.push_value(v)),
+                (_, CArg::Copy(src)) => self.push_copy(c, src),
                 (ParamSlot::Value(_), CArg::Ir(a)) => {
                     self.arg_value(p, a).map(|v| self.push_value(v))
                 }
@@ -83,6 +91,75 @@ impl Interp {
             }
         }
         self.enter(c, call.rid, bp, rbp, call.span)
+    }
+}
+
+/// Data read where it is (a local, a global, a place) to be copied.
+pub(crate) enum Copied {
+    Local(u32, Span),
+    Global(u32),
+    Place(CPlace),
+}
+
+impl Copied {
+    /// `e` as data to copy, if it is a local, a global or a place.
+    pub(crate) fn of(cx: &Cx, e: &crate::ir::Expr) -> Option<Copied> {
+        Some(match &e.kind {
+            crate::ir::ExprKind::Local(s) => Copied::Local(*s, e.span),
+            crate::ir::ExprKind::Global(g) => Copied::Global(*g),
+            crate::ir::ExprKind::Load(pl) => Copied::Place(CPlace::new(cx, pl)),
+            _ => return None,
+        })
+    }
+
+    /// Make `dst` equal to the data (reusing its allocations); `check` may refuse first.
+    #[inline]
+    pub(crate) fn copy_into(
+        &self,
+        it: &mut Interp,
+        c: &Code,
+        dst: &mut Value,
+        check: impl FnOnce(&Value, &Value) -> bool,
+    ) -> Exec<bool> {
+        match self {
+            Copied::Local(s, span) => match it.stack.get(it.bp + *s as usize) {
+                Some(Value::Absent) | None => Err(it.error(
+                    crate::interp::errnum::ERR_NOTPRES,
+                    *span,
+                    "the optional parameter was not passed",
+                )),
+                Some(v) => Ok(check(dst, v) && {
+                    dst.reset_from(v);
+                    true
+                }),
+            },
+            Copied::Global(g) => {
+                let v = it.globals.get(*g as usize).unwrap_or(&Value::Absent);
+                Ok(check(dst, v) && {
+                    dst.reset_from(v);
+                    true
+                })
+            }
+            Copied::Place(p) => p.read(it, c, |v| {
+                check(dst, v) && {
+                    dst.reset_from(v);
+                    true
+                }
+            }),
+        }
+    }
+}
+
+impl Interp {
+    /// Push a copy of `src` (into the slot above the top, reusing what it holds).
+    fn push_copy(&mut self, c: &Code, src: &Copied) -> Exec<()> {
+        let mut dst = match self.stack.get_mut(self.sp) {
+            Some(slot) => std::mem::replace(slot, Value::Absent),
+            None => Value::Absent,
+        };
+        src.copy_into(self, c, &mut dst, |_, _| true)?;
+        self.push_value(dst);
+        Ok(())
     }
 }
 

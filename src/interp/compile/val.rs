@@ -14,7 +14,7 @@ use crate::interp::errnum;
 use crate::interp::error::{Exec, Unwind};
 use crate::interp::place::same_dims;
 use crate::interp::value::{MAX_STRING, Value};
-use crate::ir::{BinOp, Expr, ExprKind, Place, Root, Ty};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Root, Ty};
 use crate::source::Span;
 
 /// A compiled expression of any type.
@@ -35,6 +35,21 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
         ExprKind::Load(pl) => {
             let p = CPlace::new(cx, pl);
             Box::new(move |it, c| p.load(it, c))
+        }
+        ExprKind::Local(slot) if !cx.is_num(e) => {
+            let slot = *slot as usize;
+            Box::new(move |it, _| match it.stack.get(it.bp + slot) {
+                Some(Value::Absent) | None => Err(it.error(
+                    errnum::ERR_NOTPRES,
+                    span,
+                    "the optional parameter was not passed",
+                )),
+                Some(v) => Ok(v.clone()),
+            })
+        }
+        ExprKind::Global(g) if !cx.is_num(e) => {
+            let g = *g as usize;
+            Box::new(move |it, _| Ok(it.globals.get(g).cloned().unwrap_or(Value::Absent)))
         }
         ExprKind::Native(n, args) => {
             let call = super::call::CNative::new(cx, *n, args, span);
@@ -250,8 +265,54 @@ impl VSink {
     }
 }
 
-/// `place := value` for values of any type.
+/// `place := value` for values of any type. Data copied from a local or global into
+/// another whole local or global goes into what the target holds (no allocation when the
+/// shapes agree).
 pub(crate) fn assign(cx: &Cx, place: &Place, value: &Expr) -> StmtFn {
+    // The source is read after the target was taken out of its slot: it must not evaluate
+    // anything (no array index) that could read the target.
+    let root = |e: &Expr| match &e.kind {
+        ExprKind::Local(s) => Some(Root::Local(*s)),
+        ExprKind::Global(g) => Some(Root::Global(*g)),
+        ExprKind::Load(pl) if pl.path.iter().all(|op| matches!(op, PathOp::Field(_))) => {
+            Some(pl.root)
+        }
+        _ => None,
+    };
+    if place.path.is_empty()
+        && !cx.is_num(value)
+        && !matches!(place.root, Root::Ref(_))
+        && let Some(src_root) = root(value)
+        && src_root != place.root
+        && !matches!(src_root, Root::Ref(_))
+        && let Some(src) = super::call::Copied::of(cx, value)
+    {
+        let (root, span) = (place.root, place.span);
+        return Box::new(move |it, c| {
+            let slot = match root {
+                Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+                Root::Global(g) => it.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            let Some(slot) = slot else {
+                return Err(it.type_bug(span, "data", &Value::Absent));
+            };
+            let mut dst = std::mem::replace(slot, Value::Absent);
+            let r = src.copy_into(it, c, &mut dst, |d, v| same_dims(d, v));
+            let slot = match root {
+                Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+                Root::Global(g) => it.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            if let Some(slot) = slot {
+                *slot = dst;
+            }
+            match r? {
+                true => Ok(()),
+                false => Err(it.dims_error(span)),
+            }
+        });
+    }
     let v = self::value(cx, value);
     let sink = VSink::of(cx, place);
     Box::new(move |it, c| {
