@@ -298,7 +298,7 @@ pub(crate) fn assign(cx: &Cx, place: &Place, value: &Expr) -> StmtFn {
                 return Err(it.type_bug(span, "data", &Value::Absent));
             };
             let mut dst = std::mem::replace(slot, Value::Absent);
-            let r = src.copy_into(it, c, &mut dst, |d, v| same_dims(d, v));
+            let r = src.copy_into(it, c, &mut dst, same_dims);
             let slot = match root {
                 Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
                 Root::Global(g) => it.globals.get_mut(g as usize),
