@@ -163,6 +163,7 @@ pub struct Interp {
     /// Late-bound calls: the procedure name being looked up, and the arguments of each
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
+    late_values: Vec<Value>,
     late_args: std::collections::HashMap<(usize, u32), Arc<[crate::ir::Arg]>>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
@@ -237,6 +238,7 @@ impl Interp {
             pending: None,
             strbufs: Vec::new(),
             late_name: String::new(),
+            late_values: Vec::new(),
             late_args: std::collections::HashMap::new(),
             stack_base: 0,
             stack_budget: 1 << 20,

@@ -442,12 +442,13 @@ impl Interp {
     /// procedure.
     pub(crate) fn late_call(
         &mut self,
-        p: &Program,
+        c: &super::compile::Code,
         name: &str,
         args: &[crate::ir::LateArg],
         module: crate::ir::ModuleId,
         span: Span,
     ) -> Exec<()> {
+        let p = &*c.prog;
         let (modname, procname) = match name.split_once(':') {
             Some((m, r)) => (Some(m.trim()), r.trim()),
             None => (None, name.trim()),
@@ -497,7 +498,23 @@ impl Interp {
             ));
         }
         // Value arguments, checked against the parameter types before the call.
-        let mut values = Vec::with_capacity(lowered.len());
+        let mut values = std::mem::take(&mut self.late_values);
+        values.clear();
+        let r = self.late_values(p, r, &lowered, &mut values);
+        let r = r.and_then(|()| self.late_push(c, rid, &lowered, &mut values, span));
+        values.clear();
+        self.late_values = values;
+        r
+    }
+
+    /// The value arguments of a late-bound call of `r`, evaluated and checked.
+    fn late_values(
+        &mut self,
+        p: &Program,
+        r: &Routine,
+        lowered: &[Arg],
+        values: &mut Vec<Value>,
+    ) -> Exec<()> {
         for (q, a) in r.params.iter().zip(lowered.iter()) {
             if let Arg::Value(e) = a {
                 let v = self.eval(p, e)?;
@@ -516,10 +533,24 @@ impl Interp {
                 values.push(v);
             }
         }
+        Ok(())
+    }
+
+    /// Call `rid` with the arguments of a late-bound call (`values`: the value arguments).
+    fn late_push(
+        &mut self,
+        c: &super::compile::Code,
+        rid: RoutineId,
+        lowered: &[Arg],
+        values: &mut Vec<Value>,
+        span: Span,
+    ) -> Exec<()> {
+        let p = &*c.prog;
+        let r = p.routine(rid);
         self.check_depth(span)?;
         let bp = self.sp;
         let rbp = self.refs.len();
-        let mut values = values.into_iter();
+        let mut values = values.drain(..);
         for (param, arg) in r.params.iter().zip(lowered.iter()) {
             let res = match (param.slot, arg) {
                 (ParamSlot::Value(_), Arg::Value(_)) => {
@@ -536,8 +567,8 @@ impl Interp {
                 return Err(u);
             }
         }
-        let code = self.code.clone();
-        self.enter(&code, rid, bp, rbp, span).map(|_| ())
+        drop(values);
+        self.enter(c, rid, bp, rbp, span).map(|_| ())
     }
 
     /// The arguments of a late-bound call matched to the parameters of `rid`.

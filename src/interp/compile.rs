@@ -334,6 +334,19 @@ impl<'p> Cx<'p> {
     ) -> flow::Cases {
         let all =
             |f: &dyn Fn(&crate::ir::Expr) -> bool| cases.iter().all(|(vals, _)| vals.iter().all(f));
+        if self.is_num(subject) && all(&|e| matches!(e.kind, crate::ir::ExprKind::Num(_))) {
+            let vals = cases
+                .iter()
+                .enumerate()
+                .flat_map(|(k, (vals, _))| {
+                    vals.iter().filter_map(move |e| match e.kind {
+                        crate::ir::ExprKind::Num(x) => Some((x, k)),
+                        _ => None,
+                    })
+                })
+                .collect();
+            return flow::Cases::NumK((num::num(self, subject), subject.span), vals);
+        }
         if self.is_num(subject) && all(&|e| self.is_num(e)) {
             let vals = cases
                 .iter()
@@ -445,6 +458,14 @@ impl<'p> Cx<'p> {
                 Box::new(move |it, c| it.exec_ctest(c, &t))
             }
             StmtKind::Assign { place, value } => val::assign(self, place, value),
+            StmtKind::LateCall { name, args, module } => {
+                let (nspan, span) = (name.span, s.span);
+                let (name, args, module) = (val::value(self, name), args.clone(), *module);
+                Box::new(move |it, c| match name(it, c)? {
+                    crate::interp::Value::Str(n) => it.late_call(c, &n, &args, module, span),
+                    other => Err(it.type_bug(nspan, "string", &other)),
+                })
+            }
             StmtKind::Native { native, args } => {
                 let call = call::CNative::new(self, *native, args, s.span);
                 Box::new(move |it, c| it.cnative(c, &call).map(drop))

@@ -53,6 +53,8 @@ impl Interp {
                     i += 1;
                     retries = 0;
                 }
+                // RETURN leaves every block of the routine: no handler, no label to look at.
+                Err(Unwind::Return) => return Err(Unwind::Return),
                 Err(u) => i = self.after_unwind(p, u, labels, span(s), i, &mut retries)?,
             }
         }
@@ -117,7 +119,8 @@ impl Interp {
             }
             StmtKind::LateCall { name, args, module } => {
                 let n = self.eval_str(p, name)?;
-                self.late_call(p, &n, args, *module, s.span)
+                let code = self.code.clone();
+                self.late_call(&code, &n, args, *module, s.span)
             }
             StmtKind::If {
                 branches,

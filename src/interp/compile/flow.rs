@@ -35,6 +35,8 @@ pub(crate) type SpannedNum = (NumFn, Span);
 
 /// The subject of a TEST and its case values, one list per CASE.
 pub(crate) enum Cases {
+    /// A `num` subject with constant case values: (value, index of its CASE), in order.
+    NumK(SpannedNum, Box<[(f32, usize)]>),
     /// A `num` subject with `num` case values, compared as numbers.
     Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
     /// A string subject with constant case strings.
@@ -84,6 +86,10 @@ impl Interp {
     pub(crate) fn exec_ctest(&mut self, c: &Code, t: &CTest) -> Exec<()> {
         let p = &*c.prog;
         let hit = match &t.cases {
+            Cases::NumK(subject, vals) => {
+                let x = self.cnum(c, subject)?;
+                vals.iter().find(|(v, _)| *v == x).map(|(_, k)| *k)
+            }
             Cases::Num(subject, cases) => {
                 let x = self.cnum(c, subject)?;
                 let mut hit = None;
