@@ -211,7 +211,8 @@ impl Interp {
         engine: Engine,
     ) -> Interp {
         let natives = registry.impls_for(&prog.natives);
-        let code = Arc::new(compile::Code::new(prog.clone(), engine));
+        let standard = registry.standard_for(&prog.natives);
+        let code = Arc::new(compile::Code::new(prog.clone(), engine, &standard));
         // What the semantic pass counted as module data (predefined data is not RAPID
         // memory).
         let module_values = prog

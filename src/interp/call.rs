@@ -130,7 +130,7 @@ impl Interp {
 
     /// Values a call of `rid` adds to the task's data, with its value arguments on the stack
     /// from `bp` ([`crate::ir::limits`]).
-    fn frame_values(&self, c: &super::compile::Code, rid: RoutineId, bp: usize) -> u64 {
+    pub(crate) fn frame_values(&self, c: &super::compile::Code, rid: RoutineId, bp: usize) -> u64 {
         let Some(cr) = c.routines.get(rid.0 as usize) else {
             return 0;
         };
@@ -177,9 +177,25 @@ impl Interp {
         rbp: usize,
         span: Span,
     ) -> Exec<Value> {
-        let p = &*c.prog;
-        let r = p.routine(rid);
+        let r = c.prog.routine(rid);
         let values = self.frame_values(c, rid, bp);
+        let cr = c.routines.get(rid.0 as usize);
+        self.enter_with(c, (rid, r, cr), values, bp, rbp, span)
+    }
+
+    /// [`Interp::enter`] for routine `rid` (`r`, compiled `cr`) whose frame adds `values`
+    /// to the task's data.
+    #[inline(always)]
+    pub(crate) fn enter_with(
+        &mut self,
+        c: &super::compile::Code,
+        (rid, r, cr): (RoutineId, &Routine, Option<&super::compile::CRoutine>),
+        values: u64,
+        bp: usize,
+        rbp: usize,
+        span: Span,
+    ) -> Exec<Value> {
+        let p = &*c.prog;
         if self.data_values.saturating_add(values) > crate::ir::limits::MAX_TASK_VALUES {
             let e = self.data_limit_error(r, values, span);
             self.stack.truncate(bp);
@@ -199,7 +215,6 @@ impl Interp {
         });
         let saved = (self.bp, self.rbp);
         (self.bp, self.rbp) = (bp, rbp);
-        let cr = c.routines.get(rid.0 as usize);
         let res = match self.init_locals(c, r, cr, bp) {
             Ok(()) => match cr {
                 Some(cr) if !c.tree_walk => self.exec_cblock(c, &cr.body),
@@ -211,7 +226,9 @@ impl Interp {
         (self.bp, self.rbp) = saved;
         self.frames.pop();
         self.sp = bp;
-        self.refs.truncate(rbp);
+        if self.refs.len() > rbp {
+            self.refs.truncate(rbp);
+        }
         self.data_values -= values;
         if values > BIG_FRAME_VALUES {
             // Free the frame's large data now (slots above the top are otherwise kept for
@@ -272,6 +289,7 @@ impl Interp {
         }
     }
 
+    #[inline(always)]
     fn init_locals(
         &mut self,
         c: &super::compile::Code,
@@ -287,6 +305,9 @@ impl Interp {
             self.stack.resize(top, Value::Num(0.0));
         }
         self.sp = self.sp.max(top);
+        if r.locals.is_empty() {
+            return Ok(());
+        }
         for (k, l) in r.locals.iter().enumerate() {
             let cl = cr.and_then(|cr| cr.locals.get(k));
             let v = match (cl, &l.init) {
@@ -309,6 +330,7 @@ impl Interp {
         Ok(())
     }
 
+    #[inline(always)]
     fn finish_call(&mut self, p: &Program, r: &Routine, res: Exec<()>) -> Exec<Value> {
         let is_func = matches!(r.kind, RoutineKind::Func(_));
         match res {

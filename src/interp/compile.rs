@@ -9,6 +9,7 @@ mod call;
 mod cond;
 mod divk;
 mod flow;
+mod natives;
 mod num;
 mod place;
 mod simple;
@@ -79,7 +80,7 @@ pub(crate) struct FrameData {
 }
 
 impl FrameData {
-    fn of(p: &Program, r: &Routine) -> FrameData {
+    pub(crate) fn of(p: &Program, r: &Routine) -> FrameData {
         let mut fixed = r
             .locals
             .iter()
@@ -117,13 +118,13 @@ pub(crate) struct CStmt {
 impl Code {
     /// Compile every routine of `prog` (for the tree-walking engine, only what a call
     /// needs to know about its frame).
-    pub(crate) fn new(prog: Arc<Program>, engine: Engine) -> Code {
+    pub(crate) fn new(prog: Arc<Program>, engine: Engine, standard: &[bool]) -> Code {
         let tree_walk = engine == Engine::TreeWalk;
         let routines = prog
             .routines
             .iter()
             .map(|r| match tree_walk {
-                false => routine(&prog, r),
+                false => routine(&prog, r, standard),
                 true => CRoutine {
                     body: CBlock {
                         stmts: Box::new([]),
@@ -154,8 +155,9 @@ impl Code {
     }
 }
 
-fn routine(p: &Program, r: &Routine) -> CRoutine {
-    let cx = Cx::new(p, r);
+fn routine(p: &Program, r: &Routine, standard: &[bool]) -> CRoutine {
+    let mut cx = Cx::new(p, r);
+    cx.standard = standard;
     let ret_num = match (r.simple, r.body.stmts.as_slice()) {
         (
             true,
@@ -203,6 +205,8 @@ pub(crate) struct Cx<'p> {
     slots: Vec<Option<Ty>>,
     /// Types of the reference slots.
     refs: Vec<Option<Ty>>,
+    /// Per native: the standard implementation (see [`natives`]).
+    standard: &'p [bool],
 }
 
 impl<'p> Cx<'p> {
@@ -253,6 +257,15 @@ impl<'p> Cx<'p> {
             },
             slots,
             refs,
+            standard: &[],
+        }
+    }
+
+    /// The name of native `n` when it runs its standard implementation.
+    pub(crate) fn standard_native(&self, n: crate::ir::NativeId) -> Option<&'p str> {
+        match self.standard.get(n.0 as usize) {
+            Some(true) => self.p.natives.get(n.0 as usize).map(|s| s.name.as_str()),
+            _ => None,
         }
     }
 

@@ -84,7 +84,7 @@ fn tp_write(cx: &mut Ctx<'_>) -> Exec<Value> {
 /// `NumToStr(x, dec)` without `\Exp` for an integer `x` below 2^24 in magnitude (where the
 /// shortest decimal of the `num` is the integer itself), written directly: the common
 /// case, the same text as [`f::num_to_str`].
-fn int_to_str(x: f32, dec: i32) -> Option<String> {
+pub(crate) fn int_to_str(x: f32, dec: i32) -> Option<String> {
     use std::fmt::Write;
     if !(0..=8).contains(&dec) || x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
         return None;

@@ -17,6 +17,9 @@ pub(crate) struct CCall {
     rid: RoutineId,
     args: Box<[CArg]>,
     span: Span,
+    /// What a call adds to the task's data, when no argument decides it (no array value
+    /// parameter).
+    values: Option<u64>,
 }
 
 /// A compiled argument, for the callee's parameter at the same index.
@@ -50,10 +53,12 @@ impl CCall {
                 _ => CArg::Ir(arg.clone()),
             })
             .collect();
+        let fd = super::FrameData::of(cx.p, r);
         CCall {
             rid,
             args: cargs,
             span,
+            values: fd.arrays.is_empty().then_some(fd.fixed),
         }
     }
 }
@@ -90,7 +95,12 @@ impl Interp {
                 return Err(u);
             }
         }
-        self.enter(c, call.rid, bp, rbp, call.span)
+        let cr = c.routines.get(call.rid.0 as usize);
+        let values = match call.values {
+            Some(v) => v,
+            None => self.frame_values(c, call.rid, bp),
+        };
+        self.enter_with(c, (call.rid, r, cr), values, bp, rbp, call.span)
     }
 }
 

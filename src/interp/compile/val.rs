@@ -51,10 +51,13 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
             let g = *g as usize;
             Box::new(move |it, _| Ok(it.globals.get(g).cloned().unwrap_or(Value::Absent)))
         }
-        ExprKind::Native(n, args) => {
-            let call = super::call::CNative::new(cx, *n, args, span);
-            Box::new(move |it, c| it.cnative(c, &call))
-        }
+        ExprKind::Native(n, args) => match super::natives::value(cx, *n, args, span) {
+            Some(f) => f,
+            None => {
+                let call = super::call::CNative::new(cx, *n, args, span);
+                Box::new(move |it, c| it.cnative(c, &call))
+            }
+        },
         ExprKind::Record(es) => {
             let es: Box<[ValFn]> = es.iter().map(|e| value(cx, e)).collect();
             Box::new(move |it, c| {
@@ -111,7 +114,7 @@ pub(crate) enum StrPart {
 }
 
 impl StrPart {
-    fn new(cx: &Cx, e: &Expr) -> StrPart {
+    pub(crate) fn new(cx: &Cx, e: &Expr) -> StrPart {
         match &e.kind {
             ExprKind::Str(s) => StrPart::Lit(s.clone()),
             ExprKind::Local(s) => StrPart::Local(*s, e.span),
@@ -123,7 +126,12 @@ impl StrPart {
 
     /// Call `f` with the text (a computed part is evaluated first).
     #[inline(always)]
-    fn with<R>(&self, it: &mut Interp, c: &Code, f: impl FnOnce(&str) -> R) -> Exec<R> {
+    pub(crate) fn with<R>(
+        &self,
+        it: &mut Interp,
+        c: &Code,
+        f: impl FnOnce(&str) -> R,
+    ) -> Exec<R> {
         let bad = |it: &Interp, v: &Value, span: Span| it.type_bug(span, "string", v);
         match self {
             StrPart::Lit(s) => Ok(f(s)),
