@@ -135,7 +135,10 @@ impl Value {
         match (self, v) {
             (Value::Record(a), Value::Record(b)) if a.len() == b.len() => {
                 for (x, y) in a.iter_mut().zip(b.iter()) {
-                    x.reset_from(y);
+                    match (x, y) {
+                        (Value::Num(x), Value::Num(y)) => *x = *y,
+                        (x, y) => x.reset_from(y),
+                    }
                 }
             }
             (Value::Array(a), Value::Array(b))

@@ -116,6 +116,12 @@ impl CPlace {
     /// Read a `num` (NaN: an error is pending); `span` is the expression's.
     #[inline]
     pub(crate) fn num(&self, it: &mut Interp, c: &Code, span: Span) -> f32 {
+        if self.idx.is_empty()
+            && let Ok(Value::Num(x)) = self.walk(it, &[])
+        {
+            // Components only (`q.x`, `p.trans.z`): nothing to evaluate first.
+            return *x;
+        }
         if self.idx.len() > MAX_INDICES {
             return it.nf_cold(c, &self.load_expr(span));
         }
