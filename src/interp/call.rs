@@ -342,7 +342,12 @@ impl Interp {
                 }
             }
             Err(Unwind::Return) => {
-                let v = std::mem::replace(&mut self.ret, Value::Absent);
+                // Every RETURN writes the slot first; a num stays there (its next write
+                // then has nothing to drop).
+                let v = match self.ret {
+                    Value::Num(x) => Value::Num(x),
+                    _ => std::mem::replace(&mut self.ret, Value::Absent),
+                };
                 if is_func && !v.is_present() {
                     Err(self.fncnoret(r))
                 } else {

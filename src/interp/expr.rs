@@ -164,7 +164,18 @@ impl Interp {
     }
 
     /// The NaN-signalling `num` of an evaluation result (a `dnum` is converted).
+    #[inline]
     pub(crate) fn nf_of(&mut self, r: Exec<Value>, span: Span) -> f32 {
+        if let Ok(Value::Num(x)) = r {
+            // Nothing to drop in a num (skips the value's drop code on the hot path).
+            std::mem::forget(r);
+            return x;
+        }
+        self.nf_of_other(r, span)
+    }
+
+    #[inline(never)]
+    fn nf_of_other(&mut self, r: Exec<Value>, span: Span) -> f32 {
         match r {
             Ok(Value::Num(x)) => x,
             Ok(Value::Dnum(x)) => match self.to_f32(x, span) {

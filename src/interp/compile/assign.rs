@@ -59,7 +59,10 @@ impl Sink {
             },
             Sink::Place(pl) => return pl.store(it, c, Value::Num(x)),
             Sink::Return => {
-                it.ret = Value::Num(x);
+                match &mut it.ret {
+                    Value::Num(r) => *r = x,
+                    r => *r = Value::Num(x),
+                }
                 return Err(Unwind::Return);
             }
         }
