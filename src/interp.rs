@@ -2,12 +2,21 @@
 //! interrupts and natives. It owns neither time nor I/O: everything outside goes through a
 //! [`Host`].
 //!
-//! Routine bodies run in a compiled form built once in [`Interp::new`] (`compile`): blocks of
-//! closures with `num` arithmetic, conditions, loops and calls specialised; everything else
-//! keeps its IR node and runs on the tree-walking path, which both share (errors, spans,
-//! budget, hook, interrupts). A simple `FUNC num` whose `RETURN` expression is pure is
-//! inlined at its call sites; when that fails, or the per-statement slow path is due, the
-//! call is made the general way, so errors and hooks see the callee's frame as always.
+//! Two engines run routine bodies ([`Engine`]), on one skeleton (the statement loop with
+//! steps, budget, hook and interrupts, the ERROR handler protocol and GOTO, FOR, TEST,
+//! calls and frames, places, natives):
+//! * the compiled engine (the default, `compile`): every routine body becomes closures
+//!   built once in [`Interp::new`], specialised by what the compiler knows of types and
+//!   shapes: `num` arithmetic without boxing, places read by borrowing and written in
+//!   place, string `+` and `=` on operands read in place, TEST against constants, the
+//!   common string functions at their call sites, late calls matched once per call site,
+//!   and a simple pure `FUNC num` inlined where it is called (when that fails, or the
+//!   per-statement slow path is due, the call is made the general way, so errors and hooks
+//!   see the callee's frame as always). Shapes without a specialised form fall back to the
+//!   tree-walker's evaluation of their IR node.
+//! * the tree-walking engine (`expr.rs`, `stmt.rs`): the plain reference, nothing
+//!   specialised. `tests/interp_agree.rs` runs generated programs and every RAPID file of
+//!   the repository on both and requires the same output, data, errors and step counts.
 //!
 //! Semantics decisions (pinned by tests under `tests/run` and `tests/rapid`):
 //! * `num` is `f32`; literals are rounded to `f32` when lowered, so `x := 9E9; x = 9E9` holds.

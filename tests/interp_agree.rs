@@ -469,7 +469,11 @@ mod generated {
                         if self.pick(3) == 0 {
                             // Never a recursion: how deep one may go depends on the Rust
                             // stack each engine uses per call.
-                            let k = if self.scope == Scope::Main { self.pick(2) } else { 0 };
+                            let k = if self.scope == Scope::Main {
+                                self.pick(2)
+                            } else {
+                                0
+                            };
                             let name = format!("\"p\" + NumToStr({k}, 0)");
                             self.line(ind, &format!("%{name}% {args};"));
                         } else {

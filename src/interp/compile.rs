@@ -1,8 +1,10 @@
-//! The compiled form the interpreter runs: every routine body becomes a block of statement
-//! closures, with `num` arithmetic, `bool` conditions, loops and user calls specialised
-//! (operands read inline, no `Value` boxing, no dispatch on the IR's shape at run time).
-//! Whatever has no specialised form keeps its IR node and runs on the tree-walking path, so
-//! both paths share one set of semantics (errors, spans, budget, hook, interrupts).
+//! The compiled engine: every routine body becomes a block of statement closures, with
+//! `num` arithmetic, `bool` conditions, loops, places, strings, TEST, user and native calls
+//! specialised (operands read inline or borrowed, no `Value` boxing, no dispatch on the
+//! IR's shape at run time). What has no specialised form keeps its IR node and runs on
+//! the tree-walking engine's evaluator; both engines share the skeleton of statement
+//! execution (errors, spans, budget, hook, interrupts), and `tests/interp_agree.rs` holds
+//! the specialised forms to the reference.
 
 mod assign;
 mod call;

@@ -123,7 +123,12 @@ mod tests {
         }
         xs.extend([-0.0, -0.4, -0.5, 0.4]);
         for k in [0.5f32, 1.5, 2.5, 8_388_607.5, 4_194_303.5] {
-            for x in [k, -k, f32::from_bits(k.to_bits() - 1), f32::from_bits(k.to_bits() + 1)] {
+            for x in [
+                k,
+                -k,
+                f32::from_bits(k.to_bits() - 1),
+                f32::from_bits(k.to_bits() + 1),
+            ] {
                 xs.push(x);
             }
         }

@@ -2,13 +2,13 @@
 //! (values of other types, references, absent and conditional arguments) as lowered.
 
 use super::num::{Opnd, Src, opnd};
-use super::{Code, Cx};
-use crate::interp::Interp;
-use crate::interp::error::Exec;
-use crate::interp::value::Value;
 use super::place::CPlace;
 use super::val::{ValFn, value};
+use super::{Code, Cx};
+use crate::interp::Interp;
 use crate::interp::NArg;
+use crate::interp::error::Exec;
+use crate::interp::value::Value;
 use crate::ir::{Arg, NativeId, ParamSlot, RoutineId, Ty};
 use crate::source::Span;
 

@@ -109,9 +109,11 @@ impl Interp {
         let r = (|| {
             s.with(self, c, |t| text.push_str(t))?;
             let (p, l) = (self.num_arg(c, pos)?, self.num_arg(c, len)?);
-            let (p, l) = (self.int_arg(p, "ChPos", span)?, self.int_arg(l, "Len", span)?);
-            if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64
-            {
+            let (p, l) = (
+                self.int_arg(p, "ChPos", span)?,
+                self.int_arg(l, "Len", span)?,
+            );
+            if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64 {
                 let from = (p - 1) as usize;
                 return Ok(Value::str(&text[from..from + l as usize]));
             }
@@ -136,7 +138,8 @@ impl Interp {
         if let Some(s) = crate::interp::builtins::int_to_str(x, d) {
             return Ok(Value::Str(s.into()));
         }
-        let s = crate::rtlib::format::num_to_str(x, d, false).map_err(|e| self.rt_error(e, span))?;
+        let s =
+            crate::rtlib::format::num_to_str(x, d, false).map_err(|e| self.rt_error(e, span))?;
         let n = s.chars().count();
         if n > crate::interp::value::MAX_STRING {
             return Err(self.error(

@@ -126,12 +126,7 @@ impl StrPart {
 
     /// Call `f` with the text (a computed part is evaluated first).
     #[inline(always)]
-    pub(crate) fn with<R>(
-        &self,
-        it: &mut Interp,
-        c: &Code,
-        f: impl FnOnce(&str) -> R,
-    ) -> Exec<R> {
+    pub(crate) fn with<R>(&self, it: &mut Interp, c: &Code, f: impl FnOnce(&str) -> R) -> Exec<R> {
         let bad = |it: &Interp, v: &Value, span: Span| it.type_bug(span, "string", v);
         match self {
             StrPart::Lit(s) => Ok(f(s)),
