@@ -265,8 +265,16 @@ mod generated {
                         _ => format!("f0({a}, {b} \\o:={})", self.num(d + 1)),
                     }
                 }
-                14 => match self.pick(2) {
+                14 => match self.pick(4) {
                     0 => format!("Abs({})", self.num(d + 1)),
+                    1 => {
+                        let f = ["Round", "Trunc"][self.pick(2)];
+                        format!("{f}({})", self.num(d + 1))
+                    }
+                    2 => {
+                        let f = ["Sqrt", "Sin", "Cos", "Exp", "ACos"][self.pick(5)];
+                        format!("{f}({})", self.num(d + 1))
+                    }
                     _ => format!("mk({}, {}).n", self.num(d + 1), self.string(d + 1)),
                 },
                 _ => format!("DnumToNum(gd * {})", self.num(d + 1)),

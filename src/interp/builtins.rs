@@ -14,6 +14,7 @@ mod pose;
 mod string;
 mod text;
 
+pub(crate) use math::whole;
 pub(crate) use text::int_to_str;
 
 use std::collections::HashMap;

@@ -82,7 +82,7 @@ pub(super) fn register(r: &mut Registry) {
 /// library's decimal rule gives what `f` gives: the shortest decimal of such a number
 /// lies on the same side of every integer and every half-integer as the number itself.
 /// A zero result is +0 (as the library's).
-fn whole(x: f32, dec: i32, f: fn(f32) -> f32) -> Option<f32> {
+pub(crate) fn whole(x: f32, dec: i32, f: fn(f32) -> f32) -> Option<f32> {
     (dec == 0 && x.abs() < 8_388_608.0).then(|| f(x) + 0.0)
 }
 

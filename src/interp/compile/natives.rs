@@ -1,7 +1,7 @@
-//! The string functions programs call most (`StrLen`, `StrPart`, `NumToStr`), compiled
-//! straight into the call site while they run their standard implementation: the string
-//! argument is read in place, numbers come from their compiled form, and no argument list
-//! is built. Arguments are evaluated in order first, then checked with the same errors as
+//! The natives programs call most (`StrLen`, `StrPart`, `NumToStr`, and `num` functions of
+//! one `num` such as `Sin`, `Sqrt`, `Trunc`), compiled straight into the call site while
+//! they run their standard implementation: a string argument is read in place, numbers
+//! come from their compiled form, and no argument list is built. Arguments are evaluated in order first, then checked with the same errors as
 //! the natives in `builtins/` (what the differential test holds them to).
 
 use super::num::num;
@@ -27,6 +27,59 @@ pub(crate) fn str_len(cx: &Cx, n: NativeId, args: &[Arg]) -> Option<NumFn> {
         match s.with(it, c, |t| crate::rtlib::string::str_len(t) as f32) {
             Ok(x) => x,
             Err(u) => it.fail_nf(u),
+        }
+    }))
+}
+
+/// A `num` function of one `num` (`Sin`, `Sqrt`, `Abs`, `Trunc` …) compiled at its call
+/// site (NaN: an error is pending), when `n` is one of those and standard.
+pub(crate) fn math(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<NumFn> {
+    use crate::rtlib::math as m;
+    type F = fn(f64) -> crate::rtlib::RtResult<f64>;
+    let name = cx.standard_native(n)?;
+    let x = match args {
+        [Arg::Value(x)] | [Arg::Value(x), Arg::Absent] if cx.is_num(x) => num(cx, x),
+        _ => return None,
+    };
+    /// How the result is computed.
+    enum How {
+        /// `Round`/`Trunc` to whole numbers: the fast rule, else the library's.
+        Whole(fn(f32) -> f32, fn(f32, i32) -> crate::rtlib::RtResult<f32>),
+        /// A library function on f64, its result rounded to `num`.
+        Lib(F),
+    }
+    let how = match (name, args.len()) {
+        ("Round", 2) => How::Whole(f32::round, m::round_num),
+        ("Trunc", 2) => How::Whole(f32::trunc, m::trunc_num),
+        ("Abs", 1) => How::Lib(|v| Ok(m::abs(v))),
+        ("Sqrt", 1) => How::Lib(m::sqrt),
+        ("Exp", 1) => How::Lib(m::exp),
+        ("Sin", 1) => How::Lib(m::sin),
+        ("Cos", 1) => How::Lib(m::cos),
+        ("Tan", 1) => How::Lib(m::tan),
+        ("ASin", 1) => How::Lib(m::asin),
+        ("ACos", 1) => How::Lib(m::acos),
+        ("ATan", 1) => How::Lib(m::atan),
+        _ => return None,
+    };
+    Some(Box::new(move |it, c| {
+        let v = x(it, c);
+        if v.is_nan() {
+            return v;
+        }
+        let r = match how {
+            How::Whole(f, lib) => match crate::interp::builtins::whole(v, 0, f) {
+                Some(r) => Ok(r),
+                None => lib(v, 0),
+            },
+            How::Lib(f) => f(v as f64).and_then(m::num_from_f64),
+        };
+        match r {
+            Ok(r) => r,
+            Err(e) => {
+                let u = it.rt_error(e, span);
+                it.fail_nf(u)
+            }
         }
     }))
 }
@@ -67,7 +120,16 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             let (x, dec) = ((num(cx, x), x.span), (num(cx, dec), dec.span));
             Some(Box::new(move |it, c| it.num_to_str(c, &x, &dec, span)))
         }
-        _ => None,
+        _ => {
+            let f = math(cx, n, args, span)?;
+            Some(Box::new(move |it, c| {
+                let x = f(it, c);
+                if x.is_nan() {
+                    return Err(it.take_pending(span));
+                }
+                Ok(Value::Num(x))
+            }))
+        }
     }
 }
 

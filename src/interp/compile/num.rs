@@ -319,6 +319,9 @@ pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
         ExprKind::Native(n, args) if super::natives::str_len(cx, *n, args).is_some() => {
             super::natives::str_len(cx, *n, args).unwrap_or_else(|| fallback(e))
         }
+        ExprKind::Native(n, args) if super::natives::math(cx, *n, args, span).is_some() => {
+            super::natives::math(cx, *n, args, span).unwrap_or_else(|| fallback(e))
+        }
         ExprKind::Native(n, args) => {
             let call = super::call::CNative::new(cx, *n, args, span);
             Box::new(move |it, c| {
