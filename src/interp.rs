@@ -173,7 +173,7 @@ pub struct Interp {
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
     late_values: Vec<Value>,
-    late_args: std::collections::HashMap<(usize, u32), Arc<[crate::ir::Arg]>>,
+    late_args: std::collections::HashMap<(usize, u32), call::LateArgs>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,

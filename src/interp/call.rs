@@ -10,6 +10,11 @@ use super::{Frame, Interp, NArg};
 use crate::ir::{Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId, RoutineKind};
 use crate::source::Span;
 
+/// The arguments of a late-bound call matched to the parameters of the procedure called:
+/// per parameter, the argument as lowered and the index of the argument written (`u32::MAX`
+/// for none).
+pub(crate) type LateArgs = std::sync::Arc<[(Arg, u32)]>;
+
 /// Deepest call nesting before execution is aborted (a runaway recursion guard).
 pub(crate) const MAX_DEPTH: usize = 10_000;
 
@@ -472,6 +477,7 @@ impl Interp {
         c: &super::compile::Code,
         name: &str,
         args: &[crate::ir::LateArg],
+        compiled: Option<&[Option<super::compile::ValFn>]>,
         module: crate::ir::ModuleId,
         span: Span,
     ) -> Exec<()> {
@@ -506,7 +512,7 @@ impl Interp {
         let lowered = match self.late_args.get(&site) {
             Some(l) => l.clone(),
             None => {
-                let l: std::sync::Arc<[Arg]> = self.lower_late_args(p, rid, args, span)?.into();
+                let l: LateArgs = self.lower_late_args(p, rid, args, span)?.into();
                 self.late_args.insert(site, l.clone());
                 l
             }
@@ -516,7 +522,7 @@ impl Interp {
             .params
             .iter()
             .zip(lowered.iter())
-            .find(|(q, a)| !q.optional && matches!(a, Arg::Absent))
+            .find(|(q, (a, _))| !q.optional && matches!(a, Arg::Absent))
         {
             return Err(self.error(
                 errnum::ERR_CALLPROC,
@@ -527,7 +533,7 @@ impl Interp {
         // Value arguments, checked against the parameter types before the call.
         let mut values = std::mem::take(&mut self.late_values);
         values.clear();
-        let r = self.late_values(p, r, &lowered, &mut values);
+        let r = self.late_values(c, r, &lowered, compiled, &mut values);
         let r = r.and_then(|()| self.late_push(c, rid, &lowered, &mut values, span));
         values.clear();
         self.late_values = values;
@@ -537,14 +543,22 @@ impl Interp {
     /// The value arguments of a late-bound call of `r`, evaluated and checked.
     fn late_values(
         &mut self,
-        p: &Program,
+        c: &super::compile::Code,
         r: &Routine,
-        lowered: &[Arg],
+        lowered: &[(Arg, u32)],
+        compiled: Option<&[Option<super::compile::ValFn>]>,
         values: &mut Vec<Value>,
     ) -> Exec<()> {
-        for (q, a) in r.params.iter().zip(lowered.iter()) {
+        let p = &*c.prog;
+        for (q, (a, k)) in r.params.iter().zip(lowered.iter()) {
             if let Arg::Value(e) = a {
-                let v = self.eval(p, e)?;
+                let f = compiled
+                    .and_then(|fs| fs.get(*k as usize))
+                    .and_then(Option::as_ref);
+                let v = match f {
+                    Some(f) => f(self, c)?,
+                    None => self.eval(p, e)?,
+                };
                 if !super::pers::fits(&p.types, q.ty, &v) {
                     return Err(self.error(
                         errnum::ERR_CALLPROC,
@@ -568,7 +582,7 @@ impl Interp {
         &mut self,
         c: &super::compile::Code,
         rid: RoutineId,
-        lowered: &[Arg],
+        lowered: &[(Arg, u32)],
         values: &mut Vec<Value>,
         span: Span,
     ) -> Exec<()> {
@@ -578,7 +592,7 @@ impl Interp {
         let bp = self.sp;
         let rbp = self.refs.len();
         let mut values = values.drain(..);
-        for (param, arg) in r.params.iter().zip(lowered.iter()) {
+        for (param, (arg, _)) in r.params.iter().zip(lowered.iter()) {
             let res = match (param.slot, arg) {
                 (ParamSlot::Value(_), Arg::Value(_)) => {
                     let v = values.next().unwrap_or(Value::Absent);
@@ -605,11 +619,11 @@ impl Interp {
         rid: RoutineId,
         args: &[crate::ir::LateArg],
         _span: Span,
-    ) -> Exec<Vec<Arg>> {
+    ) -> Exec<Vec<(Arg, u32)>> {
         let r = p.routine(rid);
-        let mut lowered: Vec<Arg> = vec![Arg::Absent; r.params.len()];
+        let mut lowered: Vec<(Arg, u32)> = vec![(Arg::Absent, u32::MAX); r.params.len()];
         let mut next_req = 0usize;
-        for a in args {
+        for (k, a) in args.iter().enumerate() {
             let idx = match &a.name {
                 Some(n) => r.params.iter().position(|q| q.name.eq_ignore_ascii_case(n)),
                 None => {
@@ -634,7 +648,7 @@ impl Interp {
                 ));
             };
             let q = &r.params[i];
-            lowered[i] = if q.ty.base == crate::ir::TypeId::SWITCH {
+            let arg = if q.ty.base == crate::ir::TypeId::SWITCH {
                 Arg::Switch
             } else if q.mode == ParamMode::In {
                 match &a.value {
@@ -653,6 +667,7 @@ impl Interp {
                     }
                 }
             };
+            lowered[i] = (arg, k as u32);
         }
         Ok(lowered)
     }

@@ -26,6 +26,7 @@ use crate::source::Span;
 pub(crate) use call::CCall;
 pub(crate) use divk::DivK;
 pub(crate) use num::NumFn;
+pub(crate) use val::ValFn;
 
 /// A compiled `bool` expression.
 pub(crate) type BoolFn = Box<dyn Fn(&mut Interp, &Code) -> Exec<bool> + Send + Sync>;
@@ -475,9 +476,16 @@ impl<'p> Cx<'p> {
             StmtKind::Assign { place, value } => val::assign(self, place, value),
             StmtKind::LateCall { name, args, module } => {
                 let (nspan, span) = (name.span, s.span);
-                let (name, args, module) = (val::value(self, name), args.clone(), *module);
+                let (name, module) = (val::value(self, name), *module);
+                let values: Box<[Option<ValFn>]> = args
+                    .iter()
+                    .map(|a| a.value.as_ref().map(|e| val::value(self, e)))
+                    .collect();
+                let args = args.clone();
                 Box::new(move |it, c| match name(it, c)? {
-                    crate::interp::Value::Str(n) => it.late_call(c, &n, &args, module, span),
+                    crate::interp::Value::Str(n) => {
+                        it.late_call(c, &n, &args, Some(&values), module, span)
+                    }
                     other => Err(it.type_bug(nspan, "string", &other)),
                 })
             }

@@ -120,7 +120,7 @@ impl Interp {
             StmtKind::LateCall { name, args, module } => {
                 let n = self.eval_str(p, name)?;
                 let code = self.code.clone();
-                self.late_call(&code, &n, args, *module, s.span)
+                self.late_call(&code, &n, args, None, *module, s.span)
             }
             StmtKind::If {
                 branches,
