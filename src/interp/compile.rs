@@ -208,6 +208,8 @@ pub(crate) struct Cx<'p> {
     slots: Vec<Option<Ty>>,
     /// Types of the reference slots.
     refs: Vec<Option<Ty>>,
+    /// The value slots of routine data (never absent, unlike optional parameters).
+    data: Vec<bool>,
     /// Per native: the standard implementation (see [`natives`]).
     standard: &'p [bool],
 }
@@ -223,8 +225,12 @@ impl<'p> Cx<'p> {
                 crate::ir::ParamSlot::Ref(k) => set(&mut refs, k, q.ty),
             }
         }
+        let mut data = vec![false; r.n_slots as usize];
         for l in &r.locals {
             set(&mut slots, l.slot, l.ty);
+            if let Some(d) = data.get_mut(l.slot as usize) {
+                *d = true;
+            }
         }
         let mut blocks: Vec<&Block> = vec![&r.body];
         blocks.extend(r.error.as_ref().map(|h| &h.body));
@@ -260,7 +266,18 @@ impl<'p> Cx<'p> {
             },
             slots,
             refs,
+            data,
             standard: &[],
+        }
+    }
+
+    /// Can reading `e` neither fail nor depend on evaluating anything (a constant, routine
+    /// data, a global)?
+    pub(crate) fn plain_read(&self, e: &crate::ir::Expr) -> bool {
+        match e.kind {
+            crate::ir::ExprKind::Str(_) | crate::ir::ExprKind::Global(_) => true,
+            crate::ir::ExprKind::Local(s) => self.data.get(s as usize).copied() == Some(true),
+            _ => false,
         }
     }
 

@@ -108,8 +108,22 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             if args.len() != 3 || cx.expr_ty(s) != Some(Ty::STRING) || !nums(&[pos, len]) {
                 return None;
             }
+            // A string read that cannot fail, with numbers that have no side effects: the
+            // numbers may go first and the string be read in place after them.
+            let in_place =
+                cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len);
             let s = StrPart::new(cx, s);
             let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
+            if in_place {
+                return Some(Box::new(move |it, c| {
+                    let (p, l) = (it.num_arg(c, &pos)?, it.num_arg(c, &len)?);
+                    let (p, l) = (it.int_arg(p, "ChPos", span)?, it.int_arg(l, "Len", span)?);
+                    match s.with(it, c, |t| part(t, p, l))? {
+                        Ok(v) => Ok(v),
+                        Err(e) => Err(it.rt_error(e, span)),
+                    }
+                }));
+            }
             Some(Box::new(move |it, c| it.str_part(c, &s, &pos, &len, span)))
         }
         "NumToStr" => {
@@ -131,6 +145,16 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             }))
         }
     }
+}
+
+/// `StrPart(text, p, l)` with integer arguments: a slice of ASCII text, else the runtime
+/// library's walk over characters (and its errors).
+fn part(text: &str, p: i64, l: i64) -> crate::rtlib::RtResult<Value> {
+    if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64 {
+        let from = (p - 1) as usize;
+        return Ok(Value::str(&text[from..from + l as usize]));
+    }
+    crate::rtlib::string::str_part(text, p, l).map(|out| Value::Str(out.into()))
 }
 
 impl Interp {
@@ -175,14 +199,7 @@ impl Interp {
                 self.int_arg(p, "ChPos", span)?,
                 self.int_arg(l, "Len", span)?,
             );
-            if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64 {
-                let from = (p - 1) as usize;
-                return Ok(Value::str(&text[from..from + l as usize]));
-            }
-            match crate::rtlib::string::str_part(&text, p, l) {
-                Ok(out) => Ok(Value::Str(out.into())),
-                Err(e) => Err(self.rt_error(e, span)),
-            }
+            part(&text, p, l).map_err(|e| self.rt_error(e, span))
         })();
         self.strbufs.push(text);
         r

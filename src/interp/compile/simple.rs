@@ -189,7 +189,7 @@ fn read_only(e: &Expr) -> bool {
 }
 
 /// Does evaluating `e` leave everything as it was (no call, no I/O)?
-fn pure(e: &Expr) -> bool {
+pub(crate) fn pure(e: &Expr) -> bool {
     match &e.kind {
         ExprKind::Num(_)
         | ExprKind::Dnum(_)
