@@ -110,8 +110,7 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             }
             // A string read that cannot fail, with numbers that have no side effects: the
             // numbers may go first and the string be read in place after them.
-            let in_place =
-                cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len);
+            let in_place = cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len);
             let s = StrPart::new(cx, s);
             let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
             if in_place {
