@@ -91,12 +91,21 @@ pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
             }
         }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, d, is_mod) = (opnd(cx, a), super::DivK::new(*k), *is_mod);
-            Box::new(move |it, c| {
-                let x = a.get(it, c);
-                let x = it.mod_div_c(x, &d, is_mod, vs);
-                finish(it, c, &sink, x, vs)
-            })
+            let (a, d) = (opnd(cx, a), super::DivK::new(*k));
+            // One closure for MOD and one for DIV: the choice is made here, not per run.
+            macro_rules! modk {
+                ($m:literal) => {
+                    Box::new(move |it, c| {
+                        let x = a.get(it, c);
+                        let x = it.mod_div_c(x, &d, $m, vs);
+                        finish(it, c, &sink, x, vs)
+                    })
+                };
+            }
+            match is_mod {
+                true => modk!(true),
+                false => modk!(false),
+            }
         }
         _ => {
             let f: NumFn = num(cx, value);

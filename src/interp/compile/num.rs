@@ -294,11 +294,19 @@ pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
             arith(*op, opnd(cx, a), opnd(cx, b), span)
         }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, d, is_mod) = (opnd(cx, a), DivK::new(*k), *is_mod);
-            Box::new(move |it, c| {
-                let x = a.get(it, c);
-                it.mod_div_c(x, &d, is_mod, span)
-            })
+            let (a, d) = (opnd(cx, a), DivK::new(*k));
+            macro_rules! modk {
+                ($m:literal) => {
+                    Box::new(move |it, c| {
+                        let x = a.get(it, c);
+                        it.mod_div_c(x, &d, $m, span)
+                    })
+                };
+            }
+            match is_mod {
+                true => modk!(true),
+                false => modk!(false),
+            }
         }
         ExprKind::Unary(UnOp::NumNeg, a) => {
             let a = opnd(cx, a);
