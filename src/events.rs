@@ -131,15 +131,17 @@ events! {
     /// corner path could not be built.
     CornerPathFailure = 50024, AbbReported, Warning, "Corner path failure", Effect::Logged;
     /// A move, or an EGM reference, comes too close to a wrist, arm or boundary singularity.
-    /// The least certain of the ABB numbers rapidvc uses.
+    /// The least certain of the ABB numbers rapidvc uses. (Under EGM the run ends and the
+    /// program stops, as for every EGM supervision error.)
     Singularity = 50026, AbbReported, Error, "Close to singularity", ROBLIMIT;
     /// An axis value outside its working range (at the target, along the path, or asked for
-    /// by EGM).
+    /// by EGM; under EGM the run ends and the program stops).
     JointOutOfRange = 50027, AbbReported, Error, "Joint out of range", ROBLIMIT;
     /// No arm configuration reaches the position (`ERR_OUTSIDE_REACH`), or a position, an
     /// orientation or an axis value is not a finite number (`ERR_OUTSIDE_REACH`), or the
     /// programmed configuration cannot reach a reachable position under `ConfJ\On`/`ConfL\On`
-    /// (`ERR_ROBLIMIT`; ABB's event for this is one of two candidates).
+    /// (`ERR_ROBLIMIT`; ABB's event for this is one of two candidates). Under EGM the run
+    /// ends and the program stops.
     OutsideReach = 50050, AbbReported, Error, "Position outside reach",
         Effect::Raises(&["ERR_OUTSIDE_REACH", "ERR_ROBLIMIT"]);
     /// MoveC: start, circle point and target do not define a circle (points too close
