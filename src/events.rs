@@ -6,15 +6,17 @@
 //! `docs/events.md` is generated from [`EventKind::ALL`] (`tests/catalogue.rs` keeps the two
 //! equal), so an event cannot exist without its entry in the catalogue.
 //!
-//! Numbers: ABB's where ABB publishes one for the condition ([`Origin::Abb`]); otherwise
-//! rapidvc's own, in ranges ABB does not use, so they can never be mistaken for an ABB event
-//! with another meaning:
+//! Numbers: ABB's where ABB publishes one for the condition ([`Origin::Abb`], or
+//! [`Origin::AbbReported`]); otherwise, for EGM, rapidvc's own in 90100–90199, a range ABB
+//! does not use, so they can never be mistaken for an ABB event with another meaning (the
+//! motion core and program execution would take 90200–90299 and 90300–90399).
 //!
-//! | range | events |
-//! |---|---|
-//! | 90100–90199 | EGM: datagrams, sessions, servo limits, instructions |
-//! | 90200–90299 | motion |
-//! | 90300–90399 | program execution |
+//! A few conditions are logged with a title and no number, and are not in this table: the
+//! motion core's joint speed error, invalid or unsupported motion data, a move while the
+//! motion is stopped or under external guidance, guidance away from a stop point
+//! (`motion::MotionError::title`), a lost interrupt (`interp::interrupts`) and the EGM note on
+//! a `\MaxSpeedDeviation` above the axis speed (`controller::egm_controller`). Numbering them
+//! would change what rapidvc prints.
 //!
 //! This module is a leaf: every layer that writes events may use it.
 
@@ -196,10 +198,6 @@ events! {
     /// The UdpUc device's socket cannot be opened (the local port is in use, the address
     /// cannot be bound).
     DeviceOpen = 90116, Rapidvc, Error, "EGM UdpUc device cannot be opened", UDPUC_COMM;
-    /// `\MaxSpeedDeviation` above the robot's slowest axis speed: EGM speeds are limited to
-    /// that axis speed.
-    SpeedDeviationCapped = 90117, Rapidvc, Info, "EGM MaxSpeedDeviation above the axis speed",
-        Effect::Logged;
     /// EGMGetId with all four EGM identities of the task reserved.
     TooManyIdentities = 90120, Rapidvc, Error, "Too many EGM identities", Effect::Stops;
     /// An EGM instruction on an identity that is not reserved (never, or released by
@@ -236,23 +234,4 @@ events! {
     /// A path correction the controller does not use (too large, or too old); the previous
     /// correction stays.
     CorrectionRejected = 90132, Rapidvc, Warning, "EGM path correction rejected", Effect::Logged;
-    /// An axis would exceed its maximum speed (the per-cycle supervision).
-    JointSpeed = 90201, Rapidvc, Error, "Joint speed error", ROBLIMIT;
-    /// Unusable motion data: a speed or `\T` time not finite or not positive, a zone radius
-    /// negative or not finite, a robot-held tool whose mass is not above 0 kg.
-    InvalidMotionData = 90202, Rapidvc, Error, "Invalid motion data",
-        Effect::Raises(&["ERR_ARGVALERR"]);
-    /// Motion data rapidvc does not support: a work object moved by a mechanical unit, a move
-    /// of more than 15 minutes.
-    MotionNotSupported = 90203, Rapidvc, Error, "Not supported", Effect::Stops;
-    /// A move while the motion core is stopped after an error (before the program recovered
-    /// it).
-    MotionStopped = 90204, Rapidvc, Error, "Motion stopped", Effect::Stops;
-    /// A planned move while the robot is under external guidance (EGM).
-    ExternalGuidance = 90205, Rapidvc, Error, "External guidance active", Effect::Stops;
-    /// External guidance that does not start at a stop point (the robot is moving).
-    NotAtStopPoint = 90206, Rapidvc, Error, "Not in a stop point", Effect::Stops;
-    /// An interrupt could not be queued while a trap ran or interrupts were held: the
-    /// interrupt is lost.
-    InterruptQueueFull = 90301, Rapidvc, Warning, "Interrupt queue full", Effect::Logged;
 }

@@ -42,8 +42,11 @@ fn events_md() -> String {
          from controllers' event logs and user reports (*ABB, reported*: the least certain \
          mappings say so). Where ABB publishes none, rapidvc uses its own number (*rapidvc*) \
          in ranges ABB does not use, so that it can never be mistaken for an ABB event with \
-         another meaning: 90100–90199 EGM, 90200–90299 motion, 90300–90399 program \
-         execution.\n\n\
+         another meaning (90100–90199: EGM).\n\n\
+         A few conditions are logged with a title and no number: the motion core's joint \
+         speed error, invalid or unsupported motion data, a move while the motion is stopped \
+         or under external guidance, guidance away from a stop point, a lost interrupt, and \
+         the EGM note on a `\\MaxSpeedDeviation` above the axis speed.\n\n\
          | number | title | severity | number from | what the program sees | when |\n\
          |---|---|---|---|---|---|\n"
     );

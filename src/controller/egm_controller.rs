@@ -45,7 +45,6 @@ use crate::egm::servo::StopMode;
 use crate::egm::session::DropCounts;
 use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
-    EventKind,
 };
 use crate::motion::{CoreMode, ExternalGuidance, InstrRef};
 use crate::output::{EgmTraceState, Feed};
@@ -740,13 +739,14 @@ impl EgmController {
                 self.capped_noted = true;
                 self.events.push((
                     plan.name.clone(),
-                    EgmEvent::new(
-                        EventKind::SpeedDeviationCapped,
-                        format!(
+                    EgmEvent {
+                        number: 0,
+                        title: "note",
+                        detail: format!(
                             "{}: \\MaxSpeedDeviation {} °/s is above the robot's slowest axis speed; EGM speeds are limited to {cap} °/s",
                             plan.instruction, plan.max_speed_deviation
                         ),
-                    ),
+                    },
                 ));
             }
             plan.max_speed_deviation = cap;

@@ -299,11 +299,8 @@ impl Interp {
         }
         for no in fired {
             if !self.ints.queue(no) {
-                let event = crate::events::EventKind::InterruptQueueFull;
                 self.host.output(super::Output::Event(format!(
-                    "{} {}: interrupt {no} was lost",
-                    event.number(),
-                    event.title()
+                    "interrupt queue full: interrupt {no} was lost"
                 )));
             }
         }

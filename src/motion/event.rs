@@ -136,16 +136,14 @@ pub enum MotionError {
 }
 
 impl MotionError {
-    /// The event-log number and title (docs/robot.md, "Errors and events"): ABB's number
-    /// where one is known, rapidvc's own 902xx otherwise.
+    /// The ABB event log number and title where one is known (docs/robot.md, "Errors and events"). Events without a
+    /// verified ABB number return `None`.
     ///
     /// * kinematics: [`KinError::event`] (50050, 50027, 50026);
     /// * a configuration change under ConfL\On: 50050 "Position outside reach" (as
     ///   `KinError::ConfigurationUnreachable`);
     /// * corner path failure: 50024;
-    /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**);
-    /// * joint speed, unusable motion data, unsupported data, a halted motion core, a move
-    ///   during external guidance, guidance away from a stop point: 90201–90206 (rapidvc's).
+    /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**).
     pub fn event(&self) -> Option<(u32, &'static str)> {
         let kind = match self {
             MotionError::Kinematics { error, .. } => error.event_kind(),
@@ -153,12 +151,12 @@ impl MotionError {
             MotionError::CircleUncertain { .. } => EventKind::CircleUncertain,
             MotionError::CornerPathFailure { .. } => EventKind::CornerPathFailure,
             MotionError::PathCorrection { number, title, .. } => return Some((*number, title)),
-            MotionError::JointSpeed { .. } => EventKind::JointSpeed,
-            MotionError::InvalidData { .. } => EventKind::InvalidMotionData,
-            MotionError::NotSupported { .. } => EventKind::MotionNotSupported,
-            MotionError::Halted => EventKind::MotionStopped,
-            MotionError::ExternalGuidance => EventKind::ExternalGuidance,
-            MotionError::NotAtStopPoint => EventKind::NotAtStopPoint,
+            MotionError::JointSpeed { .. } => return None,
+            MotionError::InvalidData { .. }
+            | MotionError::NotSupported { .. }
+            | MotionError::Halted
+            | MotionError::ExternalGuidance
+            | MotionError::NotAtStopPoint => return None,
         };
         Some((kind.number(), kind.title()))
     }
@@ -175,9 +173,20 @@ impl MotionError {
         }
     }
 
-    /// A short title for logs: the event's title.
+    /// A short title for logs: the ABB title when there is one.
     pub fn title(&self) -> &'static str {
-        self.event().map_or("Motion error", |(_, title)| title)
+        match self.event() {
+            Some((_, title)) => title,
+            None => match self {
+                MotionError::JointSpeed { .. } => "Joint speed error",
+                MotionError::InvalidData { .. } => "Invalid motion data",
+                MotionError::NotSupported { .. } => "Not supported",
+                MotionError::Halted => "Motion stopped",
+                MotionError::ExternalGuidance => "External guidance active",
+                MotionError::NotAtStopPoint => "Not in a stop point",
+                _ => "Motion error",
+            },
+        }
     }
 }
 

@@ -56,7 +56,11 @@ fn call<H: EgmParts + ?Sized, T>(
         None => return Err(no_egm()),
     };
     for (name, e) in events {
-        host.egm_event(format!("EGM {name}: {e}"));
+        if e.number == 0 {
+            host.egm_event(format!("EGM {name}: {}", e.detail));
+        } else {
+            host.egm_event(format!("EGM {name}: {e}"));
+        }
     }
     r.map_err(|e| host_error(&e))
 }
