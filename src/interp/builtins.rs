@@ -14,6 +14,9 @@ mod pose;
 mod string;
 mod text;
 
+pub(crate) use math::whole;
+pub(crate) use text::int_to_str;
+
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -36,6 +39,9 @@ pub struct Registry {
     sigs: Vec<NativeSig>,
     impls: Vec<NativeFn>,
     by_name: HashMap<String, usize>,
+    /// Per native: added or replaced after [`Registry::standard`] (compiled code runs the
+    /// specialised form of a few natives only while they are the standard ones).
+    custom: Vec<bool>,
 }
 
 impl std::fmt::Debug for Registry {
@@ -59,6 +65,7 @@ impl Registry {
             sigs: Vec::new(),
             impls: Vec::new(),
             by_name: HashMap::new(),
+            custom: Vec::new(),
         }
     }
 
@@ -77,6 +84,7 @@ impl Registry {
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
+        r.custom.iter_mut().for_each(|c| *c = false);
         r
     }
 
@@ -92,11 +100,13 @@ impl Registry {
             Some(&i) => {
                 self.sigs[i] = sig;
                 self.impls[i] = f;
+                self.custom[i] = true;
             }
             None => {
                 self.by_name.insert(key, self.sigs.len());
                 self.sigs.push(sig);
                 self.impls.push(f);
+                self.custom.push(true);
             }
         }
     }
@@ -107,6 +117,7 @@ impl Registry {
         match self.by_name.get(&name.to_ascii_uppercase()) {
             Some(&i) => {
                 self.impls[i] = f;
+                self.custom[i] = true;
                 true
             }
             None => false,
@@ -123,6 +134,17 @@ impl Registry {
         self.by_name
             .get(&name.to_ascii_uppercase())
             .map(|&i| &self.sigs[i])
+    }
+
+    /// For each native a program was checked against: is it the standard implementation?
+    pub(crate) fn standard_for(&self, sigs: &[NativeSig]) -> Vec<bool> {
+        sigs.iter()
+            .map(|s| {
+                self.by_name
+                    .get(&s.name.to_ascii_uppercase())
+                    .is_some_and(|&i| !self.custom[i])
+            })
+            .collect()
     }
 
     /// Implementations for the natives a program was checked against (by name; a native the
