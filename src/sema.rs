@@ -12,6 +12,7 @@ mod consteval;
 pub mod error;
 mod expr;
 mod limits;
+pub mod options;
 mod order;
 mod predef;
 mod resolve;
