@@ -1,4 +1,4 @@
-//! Pure implementations of RAPID's predefined functions and value semantics behind the built-ins: number text, num/dnum arithmetic, strings and poses.
+//! Pure implementations of RAPID's predefined functions and value semantics behind the built-ins: number text, num/dnum arithmetic, bit operations, digit strings, strings and poses.
 //!
 //! Everything here works on plain Rust types (`f32` for `num`, `f64` for `dnum`, `&str`,
 //! `[f64; 3]` positions, `[f64; 4]` quaternions) and never touches interpreter state. The
@@ -9,7 +9,9 @@
 //! Decisions that are not settled by an ABB document are listed in the doc of each module and
 //! pinned by unit tests there.
 
+pub mod bits;
 mod decimal;
+pub mod digits;
 pub mod format;
 pub mod math;
 pub mod pose;
@@ -179,6 +181,7 @@ mod tests {
             include_str!("../stdlib/zone.sys"),
             include_str!("../stdlib/egm.sys"),
             include_str!("../stdlib/misc.sys"),
+            include_str!("../stdlib/system.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -262,5 +265,49 @@ mod tests {
         assert_eq!(text("STR_LOWER"), string::STR_LOWER);
         assert_eq!(text("STR_WHITE"), string::STR_WHITE);
         assert_eq!(text("stEmpty"), "");
+
+        // ABB's symnum, opnum and opcalc numbers; rapidvc's for the others.
+        let system = decls(files[5]);
+        let value = |n: &str| {
+            system
+                .iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap_or_else(|| panic!("{n}"))
+        };
+        for (name, v) in [
+            ("OP_UNDEF", 0.0),
+            ("OP_AUTO", 1.0),
+            ("OP_MAN_PROG", 2.0),
+            ("OP_MAN_TEST", 3.0),
+            ("RUN_UNDEF", 0.0),
+            ("RUN_CONT_CYCLE", 1.0),
+            ("RUN_STEP_MOVE", 5.0),
+            ("LT", 1.0),
+            ("LTEQ", 2.0),
+            ("EQ", 3.0),
+            ("NOTEQ", 4.0),
+            ("GTEQ", 5.0),
+            ("GT", 6.0),
+            ("OpAdd", 1.0),
+            ("OpSub", 2.0),
+            ("OpMult", 3.0),
+            ("OpDiv", 4.0),
+            ("OpMod", 5.0),
+            ("LEVEL_NORMAL", 0.0),
+            ("LEVEL_TRAP", 1.0),
+            ("END_OF_LIST", -1.0),
+            ("ALL_DOMAINS", 1.0),
+            ("SYS_DOMAIN", 7.0),
+        ] {
+            assert_eq!(value(name), v, "{name}");
+        }
+        for alias in [
+            "ALIAS num symnum;",
+            "ALIAS string stringdig;",
+            "ALIAS string errstr;",
+        ] {
+            assert!(files[5].contains(alias), "{alias}");
+        }
     }
 }

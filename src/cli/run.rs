@@ -57,6 +57,14 @@ pub struct RunArgs {
     /// Abort after this many executed statements (at least 1).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: Option<u64>,
+    /// The controller's date and time when the program starts (CDate, CTime, GetTime),
+    /// `YYYY-MM-DD HH:MM:SS` (default 2025-01-01 00:00:00), or `now` for the host's local time.
+    #[arg(long, value_name = "DATE", value_parser = num::start_date)]
+    pub date: Option<crate::system::calendar::Calendar>,
+    /// Let SaveCfgData write into the configuration directory (never over the files the run
+    /// read its configuration from).
+    #[arg(long)]
+    pub save_cfg: bool,
     /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub cycles: u32,
@@ -164,6 +172,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         eprintln!("interrupted before the program started");
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
+    let system = system_services(&args, &loaded);
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
@@ -194,6 +203,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
+        .with_system(system)
         .with_max_time(args.max_time)
         .with_outside_inputs(outside_inputs)
         .with_stop_request(Arc::clone(&interrupted))
@@ -290,6 +300,25 @@ pub fn run(args: RunArgs) -> ExitCode {
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
+}
+
+/// The controller's system side of this run: the calendar (`--date`), the robot (`--robot`),
+/// the configuration database of the configuration directory (which SaveCfgData may write
+/// into with `--save-cfg`).
+fn system_services(args: &RunArgs, loaded: &program::Loaded) -> crate::system::Services {
+    let mut cfg =
+        crate::system::cfg_data::CfgData::from_files(&loaded.config.files, &loaded.sources);
+    if args.save_cfg
+        && let Some(dir) = program::config_dir(args.config.as_deref(), &args.files)
+    {
+        cfg.allow_saving_in(dir);
+    }
+    crate::system::Services {
+        calendar: args.date.unwrap_or_default(),
+        info: crate::system::info::SystemInfo::default().with_robot(args.robot.0),
+        cfg,
+        texts: Default::default(),
+    }
 }
 
 /// What is checked and read before anything runs.

@@ -62,6 +62,15 @@ pub fn run(args: TestArgs) -> ExitCode {
             .map(|(i, r)| (r.name.clone(), crate::ir::RoutineId(i as u32)))
             .collect();
         tests.sort_by_key(|(_, rid)| prog.routine(*rid).span.start);
+        // The configuration database of the file's configuration directory, afresh for
+        // every test.
+        let system = crate::system::Services {
+            cfg: crate::system::cfg_data::CfgData::from_files(
+                &loaded.config.files,
+                &loaded.sources,
+            ),
+            ..Default::default()
+        };
         for (name, _) in tests {
             if let Some(f) = &args.filter
                 && !name.to_ascii_lowercase().contains(&f.to_ascii_lowercase())
@@ -74,6 +83,7 @@ pub fn run(args: TestArgs) -> ExitCode {
                 .unwrap_or_else(|_| SignalTable::with_builtins());
             let host = VirtualHost::new()
                 .with_signals(Arc::new(signals))
+                .with_system(system.clone())
                 .with_max_time(86_400.0)
                 .with_sink(move |o| {
                     if let (Output::TpWrite(s), Ok(mut v)) = (o, sink_tp.lock()) {

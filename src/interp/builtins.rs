@@ -2,6 +2,7 @@
 //! [`crate::ir::sig`]) together with their implementations. The semantic pass checks calls
 //! against [`Registry::signatures`]; the interpreter calls [`Registry`] implementations.
 
+mod bits;
 mod clock;
 mod core;
 mod egm;
@@ -12,6 +13,7 @@ mod math;
 mod motion;
 mod pose;
 mod string;
+mod system;
 mod text;
 
 use std::collections::HashMap;
@@ -69,10 +71,12 @@ impl Registry {
         math::register(&mut r);
         string::register(&mut r);
         pose::register(&mut r);
+        bits::register(&mut r);
 
         clock::register(&mut r);
         io::register(&mut r);
         interrupts::register(&mut r);
+        system::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

@@ -279,6 +279,13 @@ pub trait Host {
     fn egm_path(&mut self) -> Option<&mut dyn EgmPathHost> {
         None
     }
+
+    /// The controller's system side: calendar, system information, configuration database,
+    /// text tables (`crate::system`), when this host has one (the instructions and functions
+    /// that need it fail with "… is not supported by this controller" otherwise).
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        None
+    }
 }
 
 /// A callback that receives program output.
@@ -292,6 +299,7 @@ pub struct VirtualHost {
     outputs: Vec<Output>,
     sink: Option<OutputSink>,
     signals: Arc<SignalTable>,
+    system: crate::system::Services,
 }
 
 impl fmt::Debug for VirtualHost {
@@ -318,7 +326,15 @@ impl VirtualHost {
             outputs: Vec::new(),
             sink: None,
             signals: Arc::new(SignalTable::with_builtins()),
+            system: crate::system::Services::default(),
         }
+    }
+
+    /// Use this system side (calendar start, system information, configuration data); the
+    /// default has rapidvc's values and no configuration files.
+    pub fn with_system(mut self, system: crate::system::Services) -> Self {
+        self.system = system;
+        self
     }
 
     /// Use this signal table (shared with whoever else reads or drives the signals).
@@ -404,6 +420,10 @@ impl Host for VirtualHost {
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError> {
         let id = self.signals.lookup_or_err(name).map_err(io_error)?;
         self.signals.set(id, value).map(drop).map_err(io_error)
+    }
+
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        Some(&mut self.system)
     }
 }
 

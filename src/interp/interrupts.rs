@@ -64,6 +64,11 @@ pub(crate) struct Interrupts {
 }
 
 impl Interrupts {
+    /// Is a TRAP routine running (`ExecLevel`)?
+    pub fn in_trap(&self) -> bool {
+        self.in_trap
+    }
+
     /// Anything that needs checking between statements?
     pub fn armed(&self) -> bool {
         !self.timers.is_empty()

@@ -15,6 +15,7 @@
 //! | 1501–1599 | I/O signals |
 //! | 1601–1699 | sockets and files |
 //! | 1701–1799 | EGM (`ERR_UDPUC_COMM`) |
+//! | 1801–1899 | system: configuration data and text tables (`ERR_CFG_NOTFND`, …) |
 //!
 //! Numbers never change once published; new constants take the next free number of their
 //! group.
@@ -63,6 +64,9 @@ errs! {
     ERR_INT_NOTVAL = 1013, "Not a valid integer";
     ERR_INT_MAXVAL = 1014, "Integer value outside the allowed range";
     ERR_DATA_LIMIT = 1015, "Too much data in the task (module data and running routines)";
+    ERR_CALC_NEG = 1016, "Negative result of a digit-string calculation";
+    ERR_CALC_OVERFLOW = 1017, "Result of a digit-string calculation too large";
+    ERR_CALC_DIVZERO = 1018, "Division by zero in a digit-string calculation";
     ERR_NOTPRES = 1101, "Optional parameter not present";
     ERR_FNCNORET = 1102, "Function ended without RETURN";
     ERR_CALLPROC = 1103, "Procedure call error";
@@ -106,6 +110,13 @@ errs! {
     ERR_FILESIZE = 1606, "File too large";
     ERR_RANYBIN_EOF = 1607, "End of file";
     ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
+    ERR_CFG_NOTFND = 1801, "Configuration data not found";
+    ERR_CFG_ILLTYPE = 1802, "Configuration data of another type";
+    ERR_CFG_LIMIT = 1803, "Configuration data limits violated";
+    ERR_CFG_OUTOFBOUNDS = 1804, "Configuration list number out of bounds";
+    ERR_CFG_WRITEFILE = 1805, "Configuration file cannot be written";
+    ERR_CFG_ILL_DOMAIN = 1806, "Configuration domain not valid or not in use";
+    ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
 }
 
 /// The constant with this (case-insensitive) name.
