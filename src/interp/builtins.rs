@@ -5,6 +5,7 @@
 mod bits;
 mod clock;
 mod core;
+mod data_by_name;
 mod egm;
 mod egm_path;
 mod interrupts;
@@ -84,6 +85,7 @@ impl Registry {
         io::register(&mut r);
         interrupts::register(&mut r);
         system::register(&mut r);
+        data_by_name::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

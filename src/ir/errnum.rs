@@ -117,6 +117,8 @@ errs! {
     ERR_CFG_WRITEFILE = 1805, "Configuration file cannot be written";
     ERR_CFG_ILL_DOMAIN = 1806, "Configuration domain not valid or not in use";
     ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
+    ERR_SYMBOL_TYPE = 1808, "Data object of another type";
+    ERR_INVDIM = 1809, "Data object of other dimensions";
 }
 
 /// The constant with this (case-insensitive) name.

@@ -14,13 +14,17 @@ use crate::source::Span;
 pub(crate) enum PTy {
     /// A concrete type.
     T(Ty),
-    /// Any value type (arrays of rank `rank` when it is not 0).
+    /// Any value type (arrays of rank `rank` when it is not 0; [`ANY_RANK`]: scalars and
+    /// arrays of any rank).
     Any(u8),
     /// num or dnum.
     AnyNum,
     /// A switch.
     Switch,
 }
+
+/// The rank of `PTy::Any` that accepts scalars and arrays alike (`anydata`).
+pub(crate) const ANY_RANK: u8 = u8::MAX;
 
 /// Access mode as the argument checks see it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,6 +67,8 @@ impl Checker<'_> {
                 PTy::Switch
             } else if p.ty.is_any() {
                 PTy::Any(p.ty.rank)
+            } else if p.ty.is_any_data() {
+                PTy::Any(ANY_RANK)
             } else if p.ty.is_anynum() {
                 PTy::AnyNum
             } else {
@@ -448,6 +454,10 @@ impl Checker<'_> {
     fn check_exact(&mut self, p: &PView, t: Ty, ctx: &str, span: Span) -> Option<()> {
         let (ok, expected) = match p.ty {
             PTy::T(want) => (want == t, self.ty_name(want)),
+            PTy::Any(ANY_RANK) => (
+                self.types.is_value(t.base),
+                "a value or an array of values".to_string(),
+            ),
             PTy::Any(0) => (
                 t.rank == 0 && self.types.is_value(t.base),
                 "a value (not an array)".to_string(),
