@@ -299,6 +299,11 @@ mod tests {
             ("END_OF_LIST", -1.0),
             ("ALL_DOMAINS", 1.0),
             ("SYS_DOMAIN", 7.0),
+            ("HANDLER_NONE", 0.0),
+            ("HANDLER_ERR", 2.0),
+            ("HANDLER_UNDO", 3.0),
+            ("EVENT_NONE", 0.0),
+            ("EVENT_STEP", 7.0),
         ] {
             assert_eq!(value(name), v, "{name}");
         }

@@ -11,6 +11,7 @@ MODULE system
   PERS loaddata box := [2.5, [0, 0, 40], [1, 0, 0, 0], 0, 0, 0];
   PERS loaddata curload := [0.001, [0, 0, 0.001], [1, 0, 0, 0], 0, 0, 0];
   VAR num trap_level := -1;
+  VAR num undo_saw := -1;
   VAR intnum timer_int;
 
   ! CDate and CTime examples: the date and time as text.
@@ -116,6 +117,44 @@ MODULE system
   TRAP note_level
     trap_level := ExecLevel();
   ENDTRAP
+
+  ! ExecHandler example: IF ExecHandler() = HANDLER_UNDO THEN ... (cleaning up in an UNDO
+  ! handler); HANDLER_ERR in an ERROR handler, HANDLER_NONE elsewhere.
+  PROC test_exechandler()
+    VAR num seen := -1;
+    Assert ExecHandler() = HANDLER_NONE;
+    seen := handler_of_error();
+    Assert seen = HANDLER_ERR;
+    handler_in_undo;
+  ERROR
+    ! handler_in_undo leaves with ERR_DIVZERO after its UNDO handler ran.
+    Assert ERRNO = ERR_DIVZERO;
+    Assert undo_saw = HANDLER_UNDO;
+    Assert ExecHandler() = HANDLER_ERR;
+    RETURN;
+  ENDPROC
+
+  FUNC num handler_of_error()
+    VAR num zero := 0;
+    VAR num x;
+    x := 1 / zero;
+    RETURN HANDLER_NONE;
+  ERROR
+    RETURN ExecHandler();
+  ENDFUNC
+
+  PROC handler_in_undo()
+    VAR num zero := 0;
+    VAR num x;
+    x := 1 / zero;
+  UNDO
+    undo_saw := ExecHandler();
+  ENDPROC
+
+  ! EventType example: rapidvc runs no event routines, so code never runs as one.
+  PROC test_eventtype()
+    Assert EventType() = EVENT_NONE;
+  ENDPROC
 
   ! ExecLevel: LEVEL_NORMAL in routines, LEVEL_TRAP in a TRAP.
   PROC test_execlevel()

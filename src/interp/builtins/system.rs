@@ -6,7 +6,7 @@
 //! data (`GetSysData`, `SetSysData`), the configuration database (`ReadCfgData`,
 //! `WriteCfgData`, `SaveCfgData`), text tables (`TextTabGet`, `TextGet`,
 //! `TextTabFreeToUse`), the event log (`ErrLog`, `SkipWarn`), the interpreter's own state
-//! (`ExecLevel`, `ProgMemFree`) and `WarmStart` (not possible from inside a run).
+//! (`ExecLevel`, `ExecHandler`, `EventType`, `ProgMemFree`) and `WarmStart` (not possible from inside a run).
 
 use super::{Ctx, Registry};
 use crate::interp::NArg;
@@ -105,6 +105,12 @@ pub(super) fn register(r: &mut Registry) {
     r.add("FUNC exec_level ExecLevel()", |cx| {
         Ok(Value::Num(if cx.it.ints.in_trap() { 1.0 } else { 0.0 }))
     });
+    r.add("FUNC handler_type ExecHandler()", |cx| {
+        Ok(Value::Num(f32::from(exec_handler(cx))))
+    });
+    // rapidvc runs no event routines (POWER_ON, START, STOP, …), so no code ever runs as
+    // one: EVENT_NONE.
+    r.add("FUNC event_type EventType()", |_| Ok(Value::Num(0.0)));
     r.add("FUNC num ProgMemFree()", |cx| {
         let free = crate::ir::limits::MAX_TASK_VALUES.saturating_sub(cx.it.data_values);
         let bytes = free.saturating_mul(std::mem::size_of::<Value>() as u64);
@@ -195,6 +201,33 @@ fn with_system<T>(cx: &mut Ctx<'_>, f: impl FnOnce(&mut Services, f64) -> T) -> 
                 cx.name()
             ),
         )),
+    }
+}
+
+/// `ExecHandler`: the handler the calling routine is executing: `HANDLER_ERR` (2) in its
+/// ERROR handler, `HANDLER_UNDO` (3) in its UNDO handler, `HANDLER_NONE` (0) elsewhere
+/// (rapidvc has no backward execution, so never `HANDLER_BWD`).
+fn exec_handler(cx: &Ctx<'_>) -> u8 {
+    let Some(frame) = cx.it.frames.last() else {
+        return 0;
+    };
+    let Some(r) = cx.p.routines.get(frame.routine.0 as usize) else {
+        return 0;
+    };
+    let within = |b: &crate::ir::Block| match (b.stmts.first(), b.stmts.last()) {
+        (Some(first), Some(last)) => {
+            first.span.source == frame.at.source
+                && first.span.start <= frame.at.start
+                && frame.at.end <= last.span.end
+        }
+        _ => false,
+    };
+    if r.error.as_ref().is_some_and(|h| within(&h.body)) {
+        2
+    } else if r.undo.as_ref().is_some_and(within) {
+        3
+    } else {
+        0
     }
 }
 
