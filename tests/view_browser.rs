@@ -10,12 +10,11 @@
 //! otherwise; `cargo test --test view_browser -- --include-ignored` runs them with the
 //! first `chromium` on `PATH`. Without a browser they fail with a message saying so.
 
-#[path = "support/view_page.rs"]
-mod view_page;
+use rapidvc_testkit::rapidvc;
+use rapidvc_testkit::view_page;
 
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -224,7 +223,7 @@ fn replay(program: &Path, name: &str) -> (PathBuf, PathBuf, String) {
     let dir = out_dir();
     let page = dir.join(format!("{name}.html"));
     let trace = dir.join(format!("{name}.csv"));
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("run")
         .arg(program)
         .arg("--view")
@@ -380,7 +379,7 @@ fn ten_minute_run_replays_in_chromium() {
 fn live_page_follows_a_real_time_run_in_chromium() {
     let _one = one_browser();
     use std::io::{BufRead, BufReader, Read};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let mut child = rapidvc!()
         .args(["run", "tests/view/live_run.mod", "--view-live"])
         .current_dir(root())
         .stdout(std::process::Stdio::null())
