@@ -6,6 +6,7 @@
 //!   line, the view page's data);
 //! - [`egm_loop`], [`egm_wire`]: an EGM controller loop over loopback and the sensor's messages;
 //! - [`robot`]: robot fixtures (tools of the manual's examples) and joint assertions;
+//! - [`src_files`]: the crate's own sources, for the tests that read the code (layers, catalogue);
 //! - [`gen_program`]: large valid RAPID programs for the parser's tests and benchmarks;
 //! - [`rws_http`], [`fake_controller`]: the RWS tests' HTTP client and stand-in controller.
 //!
@@ -20,6 +21,7 @@ pub mod gen_program;
 pub mod procs;
 pub mod robot;
 pub mod rws_http;
+pub mod src_files;
 pub mod summary;
 pub mod view_page;
 
