@@ -337,6 +337,18 @@ mod tests {
                 .0
                 .contains("no answer left (5 used)")
         );
+        let url = AnswersFile::parse("b.txt", "http://x\nTPReadFK : 1\n").unwrap();
+        let mut u = url.for_run();
+        let b = |t: &str, l: usize| Reply::Text {
+            text: t.into(),
+            origin: format!("b.txt:{l}"),
+        };
+        assert_eq!(
+            u.next("UIAlphaEntry"),
+            Ok(b("http://x", 1)),
+            "not a dialog name"
+        );
+        assert_eq!(u.next("TPReadFK"), Ok(b("1", 2)));
         let mut t = f.for_test("TEST_X");
         assert_eq!(t.next("UIMsgBox"), Ok(text("Yes", 9)));
         assert_eq!(f.for_test("test_y").next("TPReadFK"), Ok(text("2", 3)));

@@ -273,25 +273,4 @@ MODULE signal_events
     Assert hits = 0 AND value = 0;
     IDelete sig1int;
   ENDPROC
-
-  PROC test_dialogs_without_an_operator()
-    ! UIClientExist example: nobody answers in `rapidvc test` without --answers.
-    VAR errnum errvar;
-    VAR num reg1 := 3;
-    VAR btnres answer;
-    Assert NOT UIClientExist();
-    ! TPReadFK example 2: the \MaxTime ends the dialog, the reason in \BreakFlag.
-    TPReadFK reg1, "Go to service position?", stEmpty, stEmpty, stEmpty, "Yes", "No"
-      \MaxTime:=600 \DIBreak:=di1 \BreakFlag:=errvar;
-    Assert errvar = ERR_TP_MAXTIME AND reg1 = 3;
-    answer := UIMessageBox(\Message:="Go on?" \Buttons:=btnYesNo \DefaultBtn:=resNo
-      \MaxTime:=1 \BreakFlag:=errvar);
-    Assert answer = resNo AND errvar = ERR_TP_MAXTIME;
-    ! No \MaxTime or break: ERR_TP_NO_CLIENT.
-    TPReadNum reg1, "How many?";
-    Assert FALSE \Msg:="not reached";
-  ERROR
-    Assert ERRNO = ERR_TP_NO_CLIENT;
-    RETURN;
-  ENDPROC
 ENDMODULE
