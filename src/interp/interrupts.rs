@@ -312,8 +312,15 @@ impl Interp {
             .map(|o| o.intno)
             .collect();
         for no in hits {
-            if !self.ints.asleep.contains(&no) && self.ints.queue(no) {
+            if self.ints.asleep.contains(&no) {
+                continue;
+            }
+            if self.ints.queue(no) {
                 self.ints.events.push_back((no, ev.clone()));
+            } else {
+                self.host.output(super::Output::Event(format!(
+                    "interrupt queue full: interrupt {no} was lost"
+                )));
             }
         }
         self.update_poll();
