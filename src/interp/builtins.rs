@@ -6,10 +6,12 @@ mod bits;
 mod clock;
 mod core;
 mod data_by_name;
+mod dialogs;
 mod egm;
 mod egm_path;
 mod interrupts;
 mod io;
+mod io_events;
 mod math;
 mod motion;
 mod pose;
@@ -83,9 +85,11 @@ impl Registry {
 
         clock::register(&mut r);
         io::register(&mut r);
+        dialogs::register(&mut r);
         interrupts::register(&mut r);
         system::register(&mut r);
         data_by_name::register(&mut r);
+        io_events::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

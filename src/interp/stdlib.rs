@@ -13,4 +13,5 @@ pub const SOURCES: &[(&str, &str)] = &[
         "<stdlib>/system.sys",
         include_str!("../../stdlib/system.sys"),
     ),
+    ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];
