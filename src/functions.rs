@@ -179,6 +179,7 @@ mod tests {
             include_str!("../stdlib/zone.sys"),
             include_str!("../stdlib/egm.sys"),
             include_str!("../stdlib/misc.sys"),
+            include_str!("../stdlib/files.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -262,5 +263,13 @@ mod tests {
         assert_eq!(text("STR_LOWER"), string::STR_LOWER);
         assert_eq!(text("STR_WHITE"), string::STR_WHITE);
         assert_eq!(text("stEmpty"), "");
+
+        let disk = decls(files[5]);
+        let find = |n: &str| disk.iter().find(|d| d.2 == n).map(|d| d.3.clone()).unwrap();
+        assert_eq!(find("diskhome").as_str(), Some("HOME:"));
+        assert_eq!(find("disktemp").as_str(), Some("TEMP:"));
+        assert_eq!(find("diskram").as_str(), Some("RAMDISK:"));
+        assert_eq!(find("EOF_NUM").as_num(), Some(9.998e36));
+        assert_eq!(find("EOF_BIN").as_num(), Some(-1.0));
     }
 }

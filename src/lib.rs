@@ -23,6 +23,7 @@ pub mod egm;
 pub mod functions;
 pub mod interp;
 pub mod ir;
+pub mod mass_storage;
 pub mod motion;
 pub mod output;
 pub mod parse;

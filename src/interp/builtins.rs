@@ -6,9 +6,11 @@ mod clock;
 mod core;
 mod egm;
 mod egm_path;
+mod files;
 mod interrupts;
 mod io;
 mod math;
+mod modules;
 mod motion;
 mod pose;
 mod string;
@@ -83,6 +85,8 @@ impl Registry {
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
+        files::register(&mut r);
+        modules::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

@@ -124,6 +124,7 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("signalgo", &[("name", "string")]),
     ("socketdev", &[("id", "num")]),
     ("iodev", &[("id", "num")]),
+    ("dir", &[("id", "num")]),
 ];
 
 /// Aliases of `num` known to the kernel and the EGM option.
