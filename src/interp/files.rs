@@ -41,6 +41,8 @@ pub struct Handle {
     rpos: usize,
     can_read: bool,
     can_write: bool,
+    /// Opened for appending: every write goes to the end, wherever the position is.
+    append: bool,
     /// Opened with `\Bin`.
     pub binary: bool,
     /// The controller path, as the program named it (for messages).
@@ -106,6 +108,7 @@ impl Handle {
             rpos: 0,
             can_read,
             can_write,
+            append: mode == OpenMode::Append,
             binary,
             name: name.to_string(),
         })
@@ -197,7 +200,7 @@ impl Handle {
         match self.file.write_all(data).and_then(|()| self.file.flush()) {
             Ok(()) => Ok(()),
             Err(e) => {
-                if at >= len {
+                if self.append || at >= len {
                     let _ = self.file.set_len(len);
                     let _ = self.file.seek(SeekFrom::Start(len));
                 }
