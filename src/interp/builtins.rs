@@ -4,11 +4,13 @@
 
 mod clock;
 mod core;
+mod dialogs;
 mod egm;
 mod egm_path;
 mod files;
 mod interrupts;
 mod io;
+mod io_events;
 mod math;
 mod modules;
 mod motion;
@@ -81,7 +83,9 @@ impl Registry {
 
         clock::register(&mut r);
         io::register(&mut r);
+        dialogs::register(&mut r);
         interrupts::register(&mut r);
+        io_events::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

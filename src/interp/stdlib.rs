@@ -10,4 +10,5 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("<stdlib>/egm.sys", include_str!("../../stdlib/egm.sys")),
     ("<stdlib>/misc.sys", include_str!("../../stdlib/misc.sys")),
     ("<stdlib>/files.sys", include_str!("../../stdlib/files.sys")),
+    ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];

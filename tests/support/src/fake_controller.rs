@@ -4,12 +4,7 @@
 //! no RAPID; its "RAPID side" is a few canned reactions (named below). The RWS tests that use
 //! it (tests/rws.rs, tests/rws_clients.rs) move to a real `rapidvc serve` once the controller
 //! serves the contract.
-#![allow(
-    dead_code,
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::indexing_slicing
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use std::collections::{HashMap, VecDeque};
 use std::path::PathBuf;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 /// The crate's root directory.
 pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    crate::procs::root()
 }
 
 /// Every `.rs` file below `dir`.

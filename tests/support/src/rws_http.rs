@@ -1,12 +1,7 @@
 //! A small HTTP/1.1 client for the RWS protocol tests: one connection per request (so raw,
 //! malformed requests are possible too), digest login with the `digest_auth` crate's client
 //! side, cookies kept between requests. Every read is bounded by a time-out.
-#![allow(
-    dead_code,
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::indexing_slicing
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
