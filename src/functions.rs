@@ -182,6 +182,7 @@ mod tests {
             include_str!("../stdlib/egm.sys"),
             include_str!("../stdlib/misc.sys"),
             include_str!("../stdlib/system.sys"),
+            include_str!("../stdlib/files.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -314,5 +315,12 @@ mod tests {
         ] {
             assert!(files[5].contains(alias), "{alias}");
         }
+        let disk = decls(files[6]);
+        let find = |n: &str| disk.iter().find(|d| d.2 == n).map(|d| d.3.clone()).unwrap();
+        assert_eq!(find("diskhome").as_str(), Some("HOME:"));
+        assert_eq!(find("disktemp").as_str(), Some("TEMP:"));
+        assert_eq!(find("diskram").as_str(), Some("RAMDISK:"));
+        assert_eq!(find("EOF_NUM").as_num(), Some(9.998e36));
+        assert_eq!(find("EOF_BIN").as_num(), Some(-1.0));
     }
 }

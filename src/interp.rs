@@ -36,6 +36,7 @@ mod call;
 mod compile;
 pub mod error;
 mod expr;
+pub mod files;
 pub mod host;
 mod interrupts;
 pub mod operator;
@@ -196,6 +197,8 @@ pub struct Interp {
     /// ([`crate::ir::limits`]).
     module_values: u64,
     data_values: u64,
+    /// The mass storage and the files and directories the program has open.
+    files: files::Files,
 }
 
 impl std::fmt::Debug for Interp {
@@ -269,6 +272,7 @@ impl Interp {
             initialised: false,
             module_values,
             data_values: module_values,
+            files: files::Files::default(),
         }
     }
 
@@ -325,6 +329,14 @@ impl Interp {
     /// a clear error instead of overflowing the stack.
     pub fn set_stack_budget(&mut self, bytes: usize) {
         self.stack_budget = bytes;
+    }
+
+    /// The controller's mass storage the program's file instructions use (default: fresh
+    /// directories under the system's temporary directory, made on first use). Files still
+    /// open are closed.
+    pub fn set_mass_storage(&mut self, storage: Arc<crate::mass_storage::MassStorage>) {
+        self.files.close_all();
+        self.files = files::Files::new(storage);
     }
 
     /// Where the dialogs (`TPReadFK`, `UIMessageBox`, …) get their answers (default:

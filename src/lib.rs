@@ -25,6 +25,7 @@ pub mod events;
 pub mod functions;
 pub mod interp;
 pub mod ir;
+pub mod mass_storage;
 pub mod motion;
 pub mod output;
 pub mod parse;

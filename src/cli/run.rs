@@ -26,6 +26,7 @@ use crate::controller::{
     RealtimeConfig, RunSummary, TickSink,
 };
 use crate::interp::{Interp, Outcome, Output, pers};
+use crate::mass_storage::MassStorage;
 use crate::motion::CoreConfig;
 use crate::output::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
@@ -47,6 +48,11 @@ pub struct RunArgs {
     /// Configuration directory (EIO.cfg …); default: the directory of the first file.
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// The controller's HOME: directory (an existing directory; RAPID's file instructions
+    /// cannot leave it). Default: a fresh directory under the system's temporary directory,
+    /// made and printed when the program first uses the file system.
+    #[arg(long, value_name = "DIR", value_parser = files::home_dir)]
+    pub home: Option<PathBuf>,
     /// Persistents file: loaded at start when it exists, written at the end.
     #[arg(long)]
     pub pers: Option<PathBuf>,
@@ -226,6 +232,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             print_output(o);
         });
     let mut it = Interp::new(prog, &registry, Box::new(host));
+    it.set_mass_storage(Arc::new(MassStorage::new(args.home.clone())));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
     it.set_operator(operator);

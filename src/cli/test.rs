@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex};
 use super::render;
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
 use crate::ir::RoutineKind;
+use crate::mass_storage::MassStorage;
 use crate::program::{self, rapid_files};
 use crate::signals::SignalTable;
 
@@ -28,6 +29,12 @@ pub struct TestArgs {
     #[arg(long, value_name = "N", default_value_t = 50_000_000,
           value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
+    /// The controller's HOME: directory (an existing directory; RAPID's file instructions
+    /// cannot leave it). Default: a fresh directory under the system's temporary directory,
+    /// shared by the tests of one invocation, made when a test first uses
+    /// the file system and printed at the end.
+    #[arg(long, value_name = "DIR", value_parser = super::files::home_dir)]
+    pub home: Option<PathBuf>,
     /// Answers to the operator dialogs: each test takes the `[test_name]` section of the
     /// file, or the answers before the first section.
     #[arg(long, value_name = "FILE")]
@@ -52,6 +59,7 @@ pub fn run(args: TestArgs) -> ExitCode {
     };
     let (mut passed, mut failed) = (0usize, 0usize);
     let mut broken = false;
+    let storage = Arc::new(MassStorage::new(args.home.clone()));
     for file in &files {
         let loaded = program::load(std::slice::from_ref(file), None);
         let Some(prog) = loaded.program.clone() else {
@@ -102,6 +110,7 @@ pub fn run(args: TestArgs) -> ExitCode {
                     }
                 });
             let mut it = Interp::new(prog.clone(), &loaded.registry, Box::new(host));
+            it.set_mass_storage(Arc::clone(&storage));
             it.set_budget(Some(args.max_steps));
             it.set_stack_budget(6 << 20);
             it.set_operator(super::answers::operator(answers.as_ref(), Some(&name)));
@@ -132,6 +141,13 @@ pub fn run(args: TestArgs) -> ExitCode {
                 }
             }
         }
+    }
+    if let Some(roots) = storage.made_roots() {
+        let shown: Vec<String> = roots
+            .iter()
+            .map(|(n, d)| format!("{n}: is {}", d.display()))
+            .collect();
+        eprintln!("note: mass storage: {}", shown.join(", "));
     }
     println!("{passed} passed, {failed} failed");
     if broken {

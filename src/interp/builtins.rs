@@ -9,10 +9,12 @@ mod data_by_name;
 mod dialogs;
 mod egm;
 mod egm_path;
+mod files;
 mod interrupts;
 mod io;
 mod io_events;
 mod math;
+mod modules;
 mod motion;
 mod pose;
 mod string;
@@ -93,6 +95,8 @@ impl Registry {
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
+        files::register(&mut r);
+        modules::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

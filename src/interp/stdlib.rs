@@ -13,5 +13,6 @@ pub const SOURCES: &[(&str, &str)] = &[
         "<stdlib>/system.sys",
         include_str!("../../stdlib/system.sys"),
     ),
+    ("<stdlib>/files.sys", include_str!("../../stdlib/files.sys")),
     ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];

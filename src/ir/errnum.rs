@@ -113,6 +113,9 @@ errs! {
     ERR_FILNOTFND = 1605, "File not found";
     ERR_FILESIZE = 1606, "File too large";
     ERR_RANYBIN_EOF = 1607, "End of file";
+    ERR_FILEEXIST = 1608, "File already exists";
+    ERR_RANYBIN_CHK = 1609, "Check sum error in binary data";
+    ERR_RCVDATA = 1610, "Data read is not a number";
     ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
     ERR_CFG_NOTFND = 1801, "Configuration data not found";
     ERR_CFG_ILLTYPE = 1802, "Configuration data of another type";

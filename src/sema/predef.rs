@@ -125,6 +125,7 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("signalgo", &[("name", "string")]),
     ("socketdev", &[("id", "num")]),
     ("iodev", &[("id", "num")]),
+    ("dir", &[("id", "num")]),
     (
         "trapdata",
         &[

@@ -104,6 +104,87 @@ pub fn resolve(roots: &[Root], path: &str) -> Result<PathBuf, SandboxError> {
     Ok(host)
 }
 
+/// The mass storage of one run: `HOME` (the user's `--home DIR`, or a fresh directory),
+/// `TEMP` and `RAMDISK` (always fresh). The fresh directories are made under the system's
+/// temporary directory the first time a program or a service touches the file system, so a
+/// run that never does leaves nothing behind; [`MassStorage::roots`] says when it made them,
+/// so that the front end can print where they are.
+#[derive(Debug)]
+pub struct MassStorage {
+    home: Option<PathBuf>,
+    made: std::sync::Mutex<Option<Vec<Root>>>,
+}
+
+/// The names of the roots, in the order [`MassStorage::roots`] lists them.
+pub const ROOT_NAMES: [&str; 3] = ["HOME", "TEMP", "RAMDISK"];
+
+impl MassStorage {
+    /// Storage whose `HOME` is `home` (an existing directory), or a fresh one when `None`.
+    pub fn new(home: Option<PathBuf>) -> Self {
+        MassStorage {
+            home,
+            made: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// The roots, if a program or service has used them yet.
+    pub fn made_roots(&self) -> Option<Vec<Root>> {
+        self.made.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The roots, making the fresh directories on first use. The second value is a line
+    /// for the user the first time they were made ("HOME: is /tmp/…").
+    pub fn roots(&self) -> std::io::Result<(Vec<Root>, Option<String>)> {
+        let mut made = self.made.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(r) = made.as_ref() {
+            return Ok((r.clone(), None));
+        }
+        let base = fresh_dir()?;
+        let mut roots = Vec::with_capacity(ROOT_NAMES.len());
+        for name in ROOT_NAMES {
+            let dir = match (&self.home, name) {
+                (Some(h), "HOME") => h.clone(),
+                _ => {
+                    let d = base.join(name.to_ascii_lowercase());
+                    std::fs::create_dir(&d)?;
+                    d
+                }
+            };
+            roots.push((name.to_string(), dir));
+        }
+        let shown = roots
+            .iter()
+            .map(|(n, d)| format!("{n}: is {}", d.display()))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let note = format!("mass storage: {shown}");
+        *made = Some(roots.clone());
+        Ok((roots, Some(note)))
+    }
+}
+
+/// A new directory `rapidvc-<pid>-<n>` under the system's temporary directory.
+fn fresh_dir() -> std::io::Result<PathBuf> {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let tmp = std::env::temp_dir();
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    let mut attempt = 0;
+    loop {
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let d = tmp.join(format!("rapidvc-{}-{stamp:08x}-{n}", std::process::id()));
+        match std::fs::create_dir(&d) {
+            Ok(()) => return Ok(d),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && attempt < 100 => {
+                attempt += 1;
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
 fn is_symlink(p: &Path) -> bool {
     std::fs::symlink_metadata(p).is_ok_and(|m| m.file_type().is_symlink())
 }
