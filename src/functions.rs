@@ -13,6 +13,7 @@ mod decimal;
 pub mod format;
 pub mod math;
 pub mod pose;
+pub mod raw_bytes;
 pub mod string;
 
 /// An error raised by a runtime-library function.
@@ -179,6 +180,7 @@ mod tests {
             include_str!("../stdlib/zone.sys"),
             include_str!("../stdlib/egm.sys"),
             include_str!("../stdlib/misc.sys"),
+            include_str!("../stdlib/socket.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -262,5 +264,42 @@ mod tests {
         assert_eq!(text("STR_LOWER"), string::STR_LOWER);
         assert_eq!(text("STR_WHITE"), string::STR_WHITE);
         assert_eq!(text("stEmpty"), "");
+        let wait_max = misc.iter().find(|d| d.2 == "WAIT_MAX").unwrap();
+        assert_eq!(wait_max.3.as_dnum(), Some(8_388_607.0));
+
+        // The socket states and integer formats: `interp/builtins/sockets.rs` and
+        // `raw_bytes` use these numbers.
+        let socket = decls(files[5]);
+        let value = |n: &str| {
+            socket
+                .iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap()
+        };
+        for (i, name) in [
+            "SOCKET_CREATED",
+            "SOCKET_CONNECTED",
+            "SOCKET_BOUND",
+            "SOCKET_LISTENING",
+            "SOCKET_CLOSED",
+        ]
+        .iter()
+        .enumerate()
+        {
+            assert_eq!(value(name), i as f64 + 1.0, "{name}");
+        }
+        for (name, n) in [
+            ("USINT", 1.0),
+            ("UINT", 2.0),
+            ("UDINT", 4.0),
+            ("ULINT", 8.0),
+            ("SINT", -1.0),
+            ("INT", -2.0),
+            ("DINT", -4.0),
+            ("LINT", -8.0),
+        ] {
+            assert_eq!(value(name), n, "{name}");
+        }
     }
 }

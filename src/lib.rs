@@ -31,4 +31,5 @@ pub mod robot;
 pub mod sema;
 pub mod signals;
 pub mod source;
+pub mod system;
 pub mod wire;

@@ -376,6 +376,10 @@ impl Host for ControllerHost {
         self.io.write_signal(name, value)
     }
 
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        self.io.system()
+    }
+
     fn motion_submit(&mut self, mut cmd: MotionCommand) -> Result<u64, HostError> {
         self.state_checked()?;
         self.last_id += 1;

@@ -11,6 +11,8 @@ mod io;
 mod math;
 mod motion;
 mod pose;
+mod rawbytes;
+mod sockets;
 mod string;
 mod text;
 
@@ -76,6 +78,8 @@ impl Registry {
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
+        rawbytes::register(&mut r);
+        sockets::register(&mut r);
         r
     }
 

@@ -27,6 +27,13 @@
 //! `ERR_OUTSIDE_REACH`) and a message that starts with the ABB event number and title, so
 //! `ERROR` handlers can take them and unhandled ones point at the instruction.
 //!
+//! # The system side
+//!
+//! [`Host::system`] gives the controller's operating-system services ([`Services`]: the
+//! task's sockets), plain Rust types of `crate::system` that the natives in
+//! `interp/builtins/sockets.rs` drive. [`VirtualHost`] owns one, and the controller's host
+//! hands out that of its `VirtualHost`.
+//!
 //! # EGM
 //!
 //! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM
@@ -42,6 +49,7 @@ use super::errnum;
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
 use crate::signals::{IoError, SignalTable};
+use crate::system::Services;
 
 mod egm_host;
 mod egm_path_host;
@@ -279,6 +287,12 @@ pub trait Host {
     fn egm_path(&mut self) -> Option<&mut dyn EgmPathHost> {
         None
     }
+
+    /// The controller's operating-system side (sockets), when this host has one (the socket
+    /// instructions fail with "not supported by this controller" otherwise).
+    fn system(&mut self) -> Option<&mut Services> {
+        None
+    }
 }
 
 /// A callback that receives program output.
@@ -292,6 +306,7 @@ pub struct VirtualHost {
     outputs: Vec<Output>,
     sink: Option<OutputSink>,
     signals: Arc<SignalTable>,
+    system: Services,
 }
 
 impl fmt::Debug for VirtualHost {
@@ -318,6 +333,7 @@ impl VirtualHost {
             outputs: Vec::new(),
             sink: None,
             signals: Arc::new(SignalTable::with_builtins()),
+            system: Services::default(),
         }
     }
 
@@ -404,6 +420,10 @@ impl Host for VirtualHost {
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError> {
         let id = self.signals.lookup_or_err(name).map_err(io_error)?;
         self.signals.set(id, value).map(drop).map_err(io_error)
+    }
+
+    fn system(&mut self) -> Option<&mut Services> {
+        Some(&mut self.system)
     }
 }
 

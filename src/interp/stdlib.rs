@@ -9,4 +9,8 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("<stdlib>/zone.sys", include_str!("../../stdlib/zone.sys")),
     ("<stdlib>/egm.sys", include_str!("../../stdlib/egm.sys")),
     ("<stdlib>/misc.sys", include_str!("../../stdlib/misc.sys")),
+    (
+        "<stdlib>/socket.sys",
+        include_str!("../../stdlib/socket.sys"),
+    ),
 ];
