@@ -2,12 +2,21 @@
 //! interrupts and natives. It owns neither time nor I/O: everything outside goes through a
 //! [`Host`].
 //!
-//! Routine bodies run in a compiled form built once in [`Interp::new`] (`compile`): blocks of
-//! closures with `num` arithmetic, conditions, loops and calls specialised; everything else
-//! keeps its IR node and runs on the tree-walking path, which both share (errors, spans,
-//! budget, hook, interrupts). A simple `FUNC num` whose `RETURN` expression is pure is
-//! inlined at its call sites; when that fails, or the per-statement slow path is due, the
-//! call is made the general way, so errors and hooks see the callee's frame as always.
+//! Two engines run routine bodies ([`Engine`]), on one skeleton (the statement loop with
+//! steps, budget, hook and interrupts, the ERROR handler protocol and GOTO, FOR, TEST,
+//! calls and frames, places, natives):
+//! * the compiled engine (the default, `compile`): every routine body becomes closures
+//!   built once in [`Interp::new`], specialised by what the compiler knows of types and
+//!   shapes: `num` arithmetic without boxing, places read by borrowing and written in
+//!   place, string `+` and `=` on operands read in place, TEST against constants, the
+//!   common string functions at their call sites, late calls matched once per call site,
+//!   and a simple pure `FUNC num` inlined where it is called (when that fails, or the
+//!   per-statement slow path is due, the call is made the general way, so errors and hooks
+//!   see the callee's frame as always). Shapes without a specialised form fall back to the
+//!   tree-walker's evaluation of their IR node.
+//! * the tree-walking engine (`expr.rs`, `stmt.rs`): the plain reference, nothing
+//!   specialised. `tests/interp_agree.rs` runs generated programs and every RAPID file of
+//!   the repository on both and requires the same output, data, errors and step counts.
 //!
 //! Semantics decisions (pinned by tests under `tests/run` and `tests/rapid`):
 //! * `num` is `f32`; literals are rounded to `f32` when lowered, so `x := 9E9; x = 9E9` holds.
@@ -65,6 +74,31 @@ pub enum Outcome {
 /// least this often (a few microseconds of statements).
 pub const STOP_CHECK_EVERY: u64 = 1024;
 
+/// How routine bodies are executed. Both engines implement the same semantics (outputs,
+/// data, errors with their spans and call stacks, step counts); `tests/interp_agree.rs`
+/// runs generated programs and every RAPID file of the repository both ways and compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Engine {
+    /// Compiled closures with specialised fast paths (the default).
+    #[default]
+    Compiled,
+    /// The tree-walking reference: every statement and expression is interpreted from the
+    /// IR, nothing specialised or inlined. Much slower; for comparing against.
+    TreeWalk,
+}
+
+impl Engine {
+    /// The engine named by the environment variable `RAPIDVC_ENGINE` (`tree-walk` or
+    /// `compiled`), else the compiled one. Lets the differential tests run the command-line
+    /// tool with the reference engine.
+    pub fn from_env() -> Engine {
+        match std::env::var("RAPIDVC_ENGINE") {
+            Ok(v) if v.eq_ignore_ascii_case("tree-walk") => Engine::TreeWalk,
+            _ => Engine::Compiled,
+        }
+    }
+}
+
 /// What the before-statement hook wants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HookAction {
@@ -104,7 +138,7 @@ struct Frame {
 
 /// An argument of a native call.
 #[derive(Debug, Clone)]
-enum NArg {
+pub(crate) enum NArg {
     Absent,
     Val(Value),
     Ref(AbsPlace),
@@ -133,6 +167,13 @@ pub struct Interp {
     ret: Value,
     /// The error behind a NaN of the NaN-signalling `num` path.
     pending: Option<Unwind>,
+    /// Buffers for building strings (kept for reuse).
+    strbufs: Vec<String>,
+    /// Late-bound calls: the procedure name being looked up, and the arguments of each
+    /// call site (by its argument list's address) matched to each procedure called there.
+    late_name: String,
+    late_values: Vec<Value>,
+    late_args: std::collections::HashMap<(usize, u32), call::LateArgs>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -164,10 +205,23 @@ impl std::fmt::Debug for Interp {
 }
 
 impl Interp {
-    /// An interpreter for `prog`, which must have been checked against `registry`.
+    /// An interpreter for `prog`, which must have been checked against `registry`, running
+    /// on the engine [`Engine::from_env`] names (the compiled one unless the environment
+    /// says otherwise).
     pub fn new(prog: Arc<Program>, registry: &Registry, host: Box<dyn Host>) -> Interp {
+        Self::with_engine(prog, registry, host, Engine::from_env())
+    }
+
+    /// An interpreter for `prog` on the given engine.
+    pub fn with_engine(
+        prog: Arc<Program>,
+        registry: &Registry,
+        host: Box<dyn Host>,
+        engine: Engine,
+    ) -> Interp {
         let natives = registry.impls_for(&prog.natives);
-        let code = Arc::new(compile::Code::new(prog.clone()));
+        let standard = registry.standard_for(&prog.natives);
+        let code = Arc::new(compile::Code::new(prog.clone(), engine, &standard));
         // What the semantic pass counted as module data (predefined data is not RAPID
         // memory).
         let module_values = prog
@@ -192,6 +246,10 @@ impl Interp {
             rbp: 0,
             ret: Value::Absent,
             pending: None,
+            strbufs: Vec::new(),
+            late_name: String::new(),
+            late_values: Vec::new(),
+            late_args: std::collections::HashMap::new(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,
@@ -395,6 +453,21 @@ impl Interp {
                     value: self.globals.get(i)?.clone(),
                 })
             })
+            .collect()
+    }
+
+    /// Names and current values of the program's module data (VAR, PERS and CONST of its
+    /// own modules, in declaration order; the stdlib's are not included).
+    pub fn module_data(&self) -> Vec<(String, Value)> {
+        self.prog
+            .globals
+            .iter()
+            .zip(&self.globals)
+            .filter(|(g, _)| match g.origin {
+                GlobalOrigin::Module(m) => !self.prog.modules[m.0 as usize].stdlib,
+                _ => false,
+            })
+            .map(|(g, v)| (g.name.clone(), v.clone()))
             .collect()
     }
 

@@ -540,3 +540,18 @@ pub enum BinOp {
     /// Structural inequality.
     Ne,
 }
+
+impl BinOp {
+    /// `+ - * / DIV MOD` on `num`.
+    pub fn is_num_arith(self) -> bool {
+        matches!(
+            self,
+            BinOp::NumAdd
+                | BinOp::NumSub
+                | BinOp::NumMul
+                | BinOp::NumDiv
+                | BinOp::NumIntDiv
+                | BinOp::NumMod
+        )
+    }
+}

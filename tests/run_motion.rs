@@ -9,7 +9,10 @@ mod csv;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+#[path = "support/summary.rs"]
+mod summary;
 use csv::Csv;
+use summary::without_wall_time;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -33,20 +36,6 @@ fn rapidvc(dir: &Path, args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stdout).into_owned(),
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
-}
-
-/// The summary line without its wall-clock part: `simulated 2.260 s in <wall>, 565 cycles; …`.
-fn without_wall_time(stderr: &str) -> String {
-    stderr
-        .lines()
-        .map(|l| match (l.find(" s in "), l.find(" real time)")) {
-            (Some(a), Some(b)) if l.starts_with("simulated ") && a < b => {
-                format!("{} s in <wall>{}", &l[..a], &l[b + " real time)".len()..])
-            }
-            _ => l.to_string(),
-        })
-        .map(|l| l + "\n")
-        .collect()
 }
 
 /// A scratch directory for one test.

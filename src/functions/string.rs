@@ -106,13 +106,12 @@ pub fn str_part(s: &str, pos: i64, len: i64) -> RtResult<String> {
             format!("length {len} is negative"),
         ));
     }
-    if pos + len - 1 > n as i64 {
+    // pos ≥ 1 and len ≥ 0 here; saturating, as huge arguments (`1E30`) arrive as i64::MAX.
+    let last = pos.saturating_add(len - 1);
+    if last > n as i64 {
         return Err(out_of_bounds(
             "StrPart",
-            format!(
-                "characters {pos}..{} are past the end of the string (length {n})",
-                pos + len - 1
-            ),
+            format!("characters {pos}..{last} are past the end of the string (length {n})"),
         ));
     }
     Ok(s.chars()
@@ -276,6 +275,13 @@ mod tests {
         );
         assert_eq!(
             str_part("Robotics", 6, 4).unwrap_err().err_name(),
+            "ERR_OUTOFBND"
+        );
+        // Huge arguments (a num of 1E30 arrives as i64::MAX) fail, they do not overflow.
+        assert_eq!(
+            str_part("Robotics", i64::MAX, i64::MAX)
+                .unwrap_err()
+                .err_name(),
             "ERR_OUTOFBND"
         );
         assert_eq!(

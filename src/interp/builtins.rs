@@ -16,6 +16,9 @@ mod sockets;
 mod string;
 mod text;
 
+pub(crate) use math::whole;
+pub(crate) use text::int_to_str;
+
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -37,6 +40,9 @@ pub struct Registry {
     sigs: Vec<NativeSig>,
     impls: Vec<NativeFn>,
     by_name: HashMap<String, usize>,
+    /// Per native: added or replaced after [`Registry::standard`] (compiled code runs the
+    /// specialised form of a few natives only while they are the standard ones).
+    custom: Vec<bool>,
 }
 
 impl std::fmt::Debug for Registry {
@@ -60,6 +66,7 @@ impl Registry {
             sigs: Vec::new(),
             impls: Vec::new(),
             by_name: HashMap::new(),
+            custom: Vec::new(),
         }
     }
 
@@ -80,6 +87,7 @@ impl Registry {
         egm_path::register(&mut r);
         rawbytes::register(&mut r);
         sockets::register(&mut r);
+        r.custom.iter_mut().for_each(|c| *c = false);
         r
     }
 
@@ -95,11 +103,13 @@ impl Registry {
             Some(&i) => {
                 self.sigs[i] = sig;
                 self.impls[i] = f;
+                self.custom[i] = true;
             }
             None => {
                 self.by_name.insert(key, self.sigs.len());
                 self.sigs.push(sig);
                 self.impls.push(f);
+                self.custom.push(true);
             }
         }
     }
@@ -110,6 +120,7 @@ impl Registry {
         match self.by_name.get(&name.to_ascii_uppercase()) {
             Some(&i) => {
                 self.impls[i] = f;
+                self.custom[i] = true;
                 true
             }
             None => false,
@@ -126,6 +137,17 @@ impl Registry {
         self.by_name
             .get(&name.to_ascii_uppercase())
             .map(|&i| &self.sigs[i])
+    }
+
+    /// For each native a program was checked against: is it the standard implementation?
+    pub(crate) fn standard_for(&self, sigs: &[NativeSig]) -> Vec<bool> {
+        sigs.iter()
+            .map(|s| {
+                self.by_name
+                    .get(&s.name.to_ascii_uppercase())
+                    .is_some_and(|&i| !self.custom[i])
+            })
+            .collect()
     }
 
     /// Implementations for the natives a program was checked against (by name; a native the

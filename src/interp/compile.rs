@@ -1,26 +1,32 @@
-//! The compiled form the interpreter runs: every routine body becomes a block of statement
-//! closures, with `num` arithmetic, `bool` conditions, loops and user calls specialised
-//! (operands read inline, no `Value` boxing, no dispatch on the IR's shape at run time).
-//! Whatever has no specialised form keeps its IR node and runs on the tree-walking path, so
-//! both paths share one set of semantics (errors, spans, budget, hook, interrupts).
+//! The compiled engine: every routine body becomes a block of statement closures, with
+//! `num` arithmetic, `bool` conditions, loops, places, strings, TEST, user and native calls
+//! specialised (operands read inline or borrowed, no `Value` boxing, no dispatch on the
+//! IR's shape at run time). What has no specialised form keeps its IR node and runs on
+//! the tree-walking engine's evaluator; both engines share the skeleton of statement
+//! execution (errors, spans, budget, hook, interrupts), and `tests/interp_agree.rs` holds
+//! the specialised forms to the reference.
 
 mod assign;
 mod call;
 mod cond;
 mod divk;
 mod flow;
+mod natives;
 mod num;
+mod place;
 mod simple;
+mod val;
 
 use std::sync::Arc;
 
-use super::Interp;
 use super::error::Exec;
+use super::{Engine, Interp};
 use crate::ir::{Block, Program, Routine, RoutineKind, Stmt, StmtKind, Ty};
 use crate::source::Span;
 pub(crate) use call::CCall;
 pub(crate) use divk::DivK;
 pub(crate) use num::NumFn;
+pub(crate) use val::ValFn;
 
 /// A compiled `bool` expression.
 pub(crate) type BoolFn = Box<dyn Fn(&mut Interp, &Code) -> Exec<bool> + Send + Sync>;
@@ -33,6 +39,9 @@ pub(crate) struct Code {
     pub prog: Arc<Program>,
     /// Compiled routines (index = [`crate::ir::RoutineId`]).
     pub routines: Box<[CRoutine]>,
+    /// Routine bodies run on the tree-walking reference engine (their compiled form is
+    /// empty then).
+    pub tree_walk: bool,
 }
 
 /// A compiled routine.
@@ -44,6 +53,24 @@ pub(crate) struct CRoutine {
     /// For a simple `FUNC num` (see [`Routine::simple`]): the returned expression and the
     /// span of the `RETURN` statement.
     pub ret_num: Option<(NumFn, Span)>,
+    /// Its routine data in declaration order, as each call initialises them.
+    pub locals: Box<[CLocal]>,
+}
+
+/// A routine data declaration: the value it starts with, or its compiled initial value
+/// (none for the tree-walking engine, which evaluates the declaration's expression).
+pub(crate) struct CLocal {
+    pub default: crate::interp::Value,
+    pub init: Option<val::ValFn>,
+}
+
+impl CLocal {
+    fn of(cx: &Cx, l: &crate::ir::LocalDecl) -> CLocal {
+        CLocal {
+            default: crate::interp::value::default_value(&cx.p.types, l.ty, &l.dims),
+            init: l.init.as_ref().map(|e| val::value(cx, e)),
+        }
+    }
 }
 
 /// What a call of a routine adds to the task's data, in values ([`crate::ir::limits`]).
@@ -56,7 +83,7 @@ pub(crate) struct FrameData {
 }
 
 impl FrameData {
-    fn of(p: &Program, r: &Routine) -> FrameData {
+    pub(crate) fn of(p: &Program, r: &Routine) -> FrameData {
         let mut fixed = r
             .locals
             .iter()
@@ -92,21 +119,48 @@ pub(crate) struct CStmt {
 }
 
 impl Code {
-    /// Compile every routine of `prog`.
-    pub(crate) fn new(prog: Arc<Program>) -> Code {
-        let routines = prog.routines.iter().map(|r| routine(&prog, r)).collect();
-        Code { prog, routines }
+    /// Compile every routine of `prog` (for the tree-walking engine, only what a call
+    /// needs to know about its frame).
+    pub(crate) fn new(prog: Arc<Program>, engine: Engine, standard: &[bool]) -> Code {
+        let tree_walk = engine == Engine::TreeWalk;
+        let routines = prog
+            .routines
+            .iter()
+            .map(|r| match tree_walk {
+                false => routine(&prog, r, standard),
+                true => CRoutine {
+                    body: CBlock {
+                        stmts: Box::new([]),
+                        labels: Box::new([]),
+                    },
+                    frame: FrameData::of(&prog, r),
+                    ret_num: None,
+                    locals: r
+                        .locals
+                        .iter()
+                        .map(|l| CLocal {
+                            default: crate::interp::value::default_value(
+                                &prog.types,
+                                l.ty,
+                                &l.dims,
+                            ),
+                            init: None,
+                        })
+                        .collect(),
+                },
+            })
+            .collect();
+        Code {
+            prog,
+            routines,
+            tree_walk,
+        }
     }
 }
 
-fn routine(p: &Program, r: &Routine) -> CRoutine {
-    let cx = Cx {
-        p,
-        ret: match r.kind {
-            RoutineKind::Func(t) => Some(t),
-            _ => None,
-        },
-    };
+fn routine(p: &Program, r: &Routine, standard: &[bool]) -> CRoutine {
+    let mut cx = Cx::new(p, r);
+    cx.standard = standard;
     let ret_num = match (r.simple, r.body.stmts.as_slice()) {
         (
             true,
@@ -116,13 +170,14 @@ fn routine(p: &Program, r: &Routine) -> CRoutine {
                     span,
                 },
             ],
-        ) if cx.ret == Some(Ty::NUM) => Some((num::num(p, e), *span)),
+        ) if cx.ret == Some(Ty::NUM) => Some((num::num(&cx, e), *span)),
         _ => None,
     };
     CRoutine {
         body: cx.block(&r.body),
         frame: FrameData::of(p, r),
         ret_num,
+        locals: r.locals.iter().map(|l| CLocal::of(&cx, l)).collect(),
     }
 }
 
@@ -132,14 +187,170 @@ pub(crate) fn loop_head(span: Span, to: &crate::ir::Expr, step: Option<&crate::i
     span.start_point().merge(step.unwrap_or(to).span)
 }
 
-/// What statement compilation needs to know about the routine.
-struct Cx<'p> {
-    p: &'p Program,
-    /// The FUNC's return type.
-    ret: Option<Ty>,
+fn set(v: &mut [Option<Ty>], slot: u32, ty: Ty) {
+    if let Some(t) = v.get_mut(slot as usize) {
+        *t = Some(ty);
+    }
 }
 
-impl Cx<'_> {
+/// The head of a WHILE statement at `span` (`WHILE cond DO`), where each iteration of an
+/// empty body is counted.
+pub(crate) fn while_head(span: Span, cond: &crate::ir::Expr) -> Span {
+    span.start_point().merge(cond.span)
+}
+
+/// What compilation needs to know about the routine being compiled.
+pub(crate) struct Cx<'p> {
+    pub p: &'p Program,
+    /// The FUNC's return type.
+    pub ret: Option<Ty>,
+    /// Types of the value slots (parameters, routine data, FOR variables).
+    slots: Vec<Option<Ty>>,
+    /// Types of the reference slots.
+    refs: Vec<Option<Ty>>,
+    /// The value slots of routine data (never absent, unlike optional parameters).
+    data: Vec<bool>,
+    /// Per native: the standard implementation (see [`natives`]).
+    standard: &'p [bool],
+}
+
+impl<'p> Cx<'p> {
+    /// The context of routine `r`.
+    pub(crate) fn new(p: &'p Program, r: &Routine) -> Cx<'p> {
+        let mut slots = vec![None; r.n_slots as usize];
+        let mut refs = vec![None; r.n_refs as usize];
+        for q in &r.params {
+            match q.slot {
+                crate::ir::ParamSlot::Value(s) => set(&mut slots, s, q.ty),
+                crate::ir::ParamSlot::Ref(k) => set(&mut refs, k, q.ty),
+            }
+        }
+        let mut data = vec![false; r.n_slots as usize];
+        for l in &r.locals {
+            set(&mut slots, l.slot, l.ty);
+            if let Some(d) = data.get_mut(l.slot as usize) {
+                *d = true;
+            }
+        }
+        let mut blocks: Vec<&Block> = vec![&r.body];
+        blocks.extend(r.error.as_ref().map(|h| &h.body));
+        blocks.extend(r.undo.as_ref());
+        while let Some(b) = blocks.pop() {
+            for s in &b.stmts {
+                match &s.kind {
+                    StmtKind::For { slot, body, .. } => {
+                        set(&mut slots, *slot, Ty::NUM);
+                        blocks.push(body);
+                    }
+                    StmtKind::If {
+                        branches,
+                        else_body,
+                    } => {
+                        blocks.extend(branches.iter().map(|(_, b)| b));
+                        blocks.extend(else_body.as_ref());
+                    }
+                    StmtKind::While { body, .. } => blocks.push(body),
+                    StmtKind::Test { cases, default, .. } => {
+                        blocks.extend(cases.iter().map(|(_, b)| b));
+                        blocks.extend(default.as_ref());
+                    }
+                    _ => {}
+                }
+            }
+        }
+        Cx {
+            p,
+            ret: match r.kind {
+                RoutineKind::Func(t) => Some(t),
+                _ => None,
+            },
+            slots,
+            refs,
+            data,
+            standard: &[],
+        }
+    }
+
+    /// Can reading `e` neither fail nor depend on evaluating anything (a constant, routine
+    /// data, a global)?
+    pub(crate) fn plain_read(&self, e: &crate::ir::Expr) -> bool {
+        match e.kind {
+            crate::ir::ExprKind::Str(_) | crate::ir::ExprKind::Global(_) => true,
+            crate::ir::ExprKind::Local(s) => self.data.get(s as usize).copied() == Some(true),
+            _ => false,
+        }
+    }
+
+    /// The name of native `n` when it runs its standard implementation.
+    pub(crate) fn standard_native(&self, n: crate::ir::NativeId) -> Option<&'p str> {
+        match self.standard.get(n.0 as usize) {
+            Some(true) => self.p.natives.get(n.0 as usize).map(|s| s.name.as_str()),
+            _ => None,
+        }
+    }
+
+    /// The type of a place, when it is known.
+    pub(crate) fn place_ty(&self, pl: &crate::ir::Place) -> Option<Ty> {
+        let mut ty = match pl.root {
+            crate::ir::Root::Local(s) => (*self.slots.get(s as usize)?)?,
+            crate::ir::Root::Ref(k) => (*self.refs.get(k as usize)?)?,
+            crate::ir::Root::Global(g) => self.p.globals.get(g as usize)?.ty,
+        };
+        for op in pl.path.iter() {
+            ty = match op {
+                crate::ir::PathOp::Field(f) if ty.rank == 0 => {
+                    self.p.types.fields(ty.base)?.get(*f as usize)?.ty
+                }
+                crate::ir::PathOp::Index(_) if ty.rank > 0 => ty.elem(),
+                _ => return None,
+            };
+        }
+        Some(ty)
+    }
+
+    /// The type of an expression, when it is known (what the compiler specialises on).
+    pub(crate) fn expr_ty(&self, e: &crate::ir::Expr) -> Option<Ty> {
+        use crate::ir::{BinOp::*, ExprKind as K, UnOp};
+        Some(match &e.kind {
+            K::Num(_) | K::SignalValue(_) | K::Errno | K::Intno | K::NumModDivK(..) => Ty::NUM,
+            K::ToNum(_) => Ty::NUM,
+            K::Dnum(_) | K::ToDnum(_) => Ty::DNUM,
+            K::Bool(_) | K::Present(_) => Ty::BOOL,
+            K::Str(_) => Ty::STRING,
+            K::Local(s) => (*self.slots.get(*s as usize)?)?,
+            K::Global(g) => self.p.globals.get(*g as usize)?.ty,
+            K::Load(pl) => self.place_ty(pl)?,
+            K::Field(b, f) => {
+                let t = self.expr_ty(b)?;
+                if t.rank > 0 {
+                    return None;
+                }
+                self.p.types.fields(t.base)?.get(*f as usize)?.ty
+            }
+            K::Unary(UnOp::NumNeg, _) => Ty::NUM,
+            K::Unary(UnOp::DnumNeg, _) => Ty::DNUM,
+            K::Unary(UnOp::Not, _) => Ty::BOOL,
+            K::Binary(op, ..) => match op {
+                NumAdd | NumSub | NumMul | NumDiv | NumIntDiv | NumMod => Ty::NUM,
+                DnumAdd | DnumSub | DnumMul | DnumDiv | DnumIntDiv | DnumMod => Ty::DNUM,
+                NumLt | NumLe | NumGt | NumGe | NumEq | NumNe | DnumLt | DnumLe | DnumGt
+                | DnumGe | And | Or | Xor | Eq | Ne => Ty::BOOL,
+                Concat => Ty::STRING,
+                _ => return None,
+            },
+            K::Call(r, _) => match self.p.routine(*r).kind {
+                RoutineKind::Func(t) => t,
+                _ => return None,
+            },
+            _ => return None,
+        })
+    }
+
+    /// Is `e` known to be a `num`?
+    pub(crate) fn is_num(&self, e: &crate::ir::Expr) -> bool {
+        self.expr_ty(e) == Some(Ty::NUM)
+    }
+
     fn block(&self, b: &Block) -> CBlock {
         CBlock {
             stmts: b.stmts.iter().map(|s| self.stmt(s)).collect(),
@@ -147,14 +358,64 @@ impl Cx<'_> {
         }
     }
 
+    /// The subject and case values of a TEST, specialised for `num` and for strings
+    /// against constants.
+    fn test_cases(
+        &self,
+        subject: &crate::ir::Expr,
+        cases: &[(Vec<crate::ir::Expr>, Block)],
+    ) -> flow::Cases {
+        let all =
+            |f: &dyn Fn(&crate::ir::Expr) -> bool| cases.iter().all(|(vals, _)| vals.iter().all(f));
+        if self.is_num(subject) && all(&|e| matches!(e.kind, crate::ir::ExprKind::Num(_))) {
+            let vals = cases
+                .iter()
+                .enumerate()
+                .flat_map(|(k, (vals, _))| {
+                    vals.iter().filter_map(move |e| match e.kind {
+                        crate::ir::ExprKind::Num(x) => Some((x, k)),
+                        _ => None,
+                    })
+                })
+                .collect();
+            return flow::Cases::NumK((num::num(self, subject), subject.span), vals);
+        }
+        if self.is_num(subject) && all(&|e| self.is_num(e)) {
+            let vals = cases
+                .iter()
+                .map(|(vals, _)| vals.iter().map(|e| (num::num(self, e), e.span)).collect())
+                .collect();
+            return flow::Cases::Num((num::num(self, subject), subject.span), vals);
+        }
+        if self.expr_ty(subject) == Some(Ty::STRING)
+            && all(&|e| matches!(e.kind, crate::ir::ExprKind::Str(_)))
+        {
+            let vals = cases
+                .iter()
+                .map(|(vals, _)| {
+                    vals.iter()
+                        .filter_map(|e| match &e.kind {
+                            crate::ir::ExprKind::Str(s) => Some(s.clone()),
+                            _ => None,
+                        })
+                        .collect()
+                })
+                .collect();
+            return flow::Cases::Str(val::value(self, subject), vals);
+        }
+        flow::Cases::Any(
+            subject.clone(),
+            cases.iter().map(|(vals, _)| vals.clone().into()).collect(),
+        )
+    }
+
     fn stmt(&self, s: &Stmt) -> CStmt {
-        let p = self.p;
         let run: StmtFn = match &s.kind {
             StmtKind::AssignNum { place, value } => {
-                assign::num_into(p, value, assign::Sink::of(place))
+                assign::num_into(self, value, assign::Sink::of(self, place))
             }
             StmtKind::Call { routine, args } => {
-                let call = CCall::new(p, *routine, args, s.span);
+                let call = CCall::new(self, *routine, args, s.span);
                 Box::new(move |it, c| it.ccall(c, &call).map(drop))
             }
             StmtKind::If {
@@ -163,7 +424,7 @@ impl Cx<'_> {
             } => {
                 let branches: Box<[(BoolFn, CBlock)]> = branches
                     .iter()
-                    .map(|(e, b)| (cond::cond(p, e), self.block(b)))
+                    .map(|(e, b)| (cond::cond(self, e), self.block(b)))
                     .collect();
                 let else_body = else_body.as_ref().map(|b| self.block(b));
                 Box::new(move |it, c| {
@@ -179,12 +440,11 @@ impl Cx<'_> {
                 })
             }
             StmtKind::While { cond, body } => {
-                let cond_span = cond.span;
-                let cond = cond::cond(p, cond);
+                let head = while_head(s.span, cond);
+                let cond = cond::cond(self, cond);
                 let body = self.block(body);
                 if body.stmts.is_empty() {
                     // No statement counts the iterations: the loop head does.
-                    let head = s.span.start_point().merge(cond_span);
                     Box::new(move |it, c| {
                         while cond(it, c)? {
                             it.step(&c.prog, head)?;
@@ -209,9 +469,9 @@ impl Cx<'_> {
             } => {
                 let f = flow::CFor {
                     slot: *slot,
-                    from: (num::num(p, from), from.span),
-                    to: (num::num(p, to), to.span),
-                    step: step.as_ref().map(|e| (num::num(p, e), e.span)),
+                    from: (num::num(self, from), from.span),
+                    to: (num::num(self, to), to.span),
+                    step: step.as_ref().map(|e| (num::num(self, e), e.span)),
                     body: self.block(body),
                     span: s.span,
                     head: loop_head(s.span, to, step.as_ref()),
@@ -224,18 +484,36 @@ impl Cx<'_> {
                 default,
             } => {
                 let t = flow::CTest {
-                    subject: subject.clone(),
-                    cases: cases
-                        .iter()
-                        .map(|(vals, b)| (vals.clone().into(), self.block(b)))
-                        .collect(),
+                    cases: self.test_cases(subject, cases),
+                    bodies: cases.iter().map(|(_, b)| self.block(b)).collect(),
                     default: default.as_ref().map(|b| self.block(b)),
                 };
                 Box::new(move |it, c| it.exec_ctest(c, &t))
             }
-            StmtKind::Return(Some(e)) if self.ret == Some(Ty::NUM) => {
-                assign::num_into(p, e, assign::Sink::Return)
+            StmtKind::Assign { place, value } => val::assign(self, place, value),
+            StmtKind::LateCall { name, args, module } => {
+                let (nspan, span) = (name.span, s.span);
+                let (name, module) = (val::value(self, name), *module);
+                let values: Box<[Option<ValFn>]> = args
+                    .iter()
+                    .map(|a| a.value.as_ref().map(|e| val::value(self, e)))
+                    .collect();
+                let args = args.clone();
+                Box::new(move |it, c| match name(it, c)? {
+                    crate::interp::Value::Str(n) => {
+                        it.late_call(c, &n, &args, Some(&values), module, span)
+                    }
+                    other => Err(it.type_bug(nspan, "string", &other)),
+                })
             }
+            StmtKind::Native { native, args } => {
+                let call = call::CNative::new(self, *native, args, s.span);
+                Box::new(move |it, c| it.cnative(c, &call).map(drop))
+            }
+            StmtKind::Return(Some(e)) if self.ret == Some(Ty::NUM) => {
+                assign::num_into(self, e, assign::Sink::Return)
+            }
+            StmtKind::Return(Some(e)) => val::ret(self, e),
             _ => {
                 let s = s.clone();
                 Box::new(move |it, c| it.exec_stmt(&c.prog, &s))

@@ -144,64 +144,17 @@ impl Interp {
 
     /// Evaluate a `num` expression without a `Result`: a `num` value is never NaN (every
     /// operation checks its result), so NaN signals an error, kept in `self.pending`.
-    #[inline]
     pub(crate) fn nf(&mut self, p: &Program, e: &Expr) -> f32 {
         match &e.kind {
             ExprKind::Num(x) => *x,
-            ExprKind::Local(s) => match self.stack.get(self.bp + *s as usize) {
-                Some(Value::Num(x)) => *x,
-                _ => self.nf_slow(p, e),
-            },
-            ExprKind::Global(g) => match self.globals.get(*g as usize) {
-                Some(Value::Num(x)) => *x,
-                _ => self.nf_slow(p, e),
-            },
-            ExprKind::Binary(op, a, b) if is_num_arith(*op) => self.nf_binary(p, *op, a, b, e.span),
-            ExprKind::NumModDivK(a, k, is_mod) => self.nf_mod_k(p, a, *k, *is_mod, e.span),
+            ExprKind::Binary(op, a, b) if op.is_num_arith() => self.nf_binary(p, *op, a, b, e.span),
+            ExprKind::NumModDivK(a, k, is_mod) => {
+                let x = self.nf(p, a);
+                self.mod_div_k(x, *k, *is_mod, e.span)
+            }
             ExprKind::Unary(UnOp::NumNeg, a) => -self.nf(p, a),
-            ExprKind::Load(pl) => self.nf_load(p, pl, e),
-            ExprKind::Call(r, args) if p.routine(*r).simple => self.nf_call(p, *r, args, e.span),
             _ => self.nf_slow(p, e),
         }
-    }
-
-    #[inline(never)]
-    fn nf_load(&mut self, p: &Program, pl: &crate::ir::Place, e: &Expr) -> f32 {
-        // `a{i}` of a local or global 1-D array of num, inline.
-        if let [crate::ir::PathOp::Index(es)] = &*pl.path
-            && let [ie] = &**es
-            && let Some(x) = self.num_leaf(ie)
-        {
-            let arr = match pl.root {
-                crate::ir::Root::Local(s) => self.stack.get(self.bp + s as usize),
-                crate::ir::Root::Global(g) => self.globals.get(g as usize),
-                crate::ir::Root::Ref(_) => None,
-            };
-            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(x))
-                && a.rank == 1
-                && i >= 1
-                && i as u32 <= a.dims[0]
-                && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
-            {
-                return *v;
-            }
-        }
-        match self.load_f32(p, pl) {
-            Ok(Some(x)) => x,
-            Ok(None) => self.nf_slow(p, e),
-            Err(u) => self.fail_nf(u),
-        }
-    }
-
-    #[inline(never)]
-    fn nf_call(
-        &mut self,
-        p: &Program,
-        r: crate::ir::RoutineId,
-        args: &[crate::ir::Arg],
-        span: Span,
-    ) -> f32 {
-        self.call_simple_num(p, r, args, span)
     }
 
     #[inline(never)]
@@ -211,7 +164,18 @@ impl Interp {
     }
 
     /// The NaN-signalling `num` of an evaluation result (a `dnum` is converted).
+    #[inline]
     pub(crate) fn nf_of(&mut self, r: Exec<Value>, span: Span) -> f32 {
+        if let Ok(Value::Num(x)) = r {
+            // Nothing to drop in a num (skips the value's drop code on the hot path).
+            std::mem::forget(r);
+            return x;
+        }
+        self.nf_of_other(r, span)
+    }
+
+    #[inline(never)]
+    fn nf_of_other(&mut self, r: Exec<Value>, span: Span) -> f32 {
         match r {
             Ok(Value::Num(x)) => x,
             Ok(Value::Dnum(x)) => match self.to_f32(x, span) {
@@ -224,16 +188,6 @@ impl Interp {
             }
             Err(u) => self.fail_nf(u),
         }
-    }
-
-    /// `x MOD k` / `x DIV k` with a constant integer `k` ≠ 0.
-    #[inline(never)]
-    fn nf_mod_k(&mut self, p: &Program, a: &Expr, k: i32, is_mod: bool, span: Span) -> f32 {
-        let x = match self.num_operand(a) {
-            Some(x) => x,
-            None => self.nf(p, a),
-        };
-        self.mod_div_k(x, k, is_mod, span)
     }
 
     /// `x MOD k` / `x DIV k` for an evaluated `x` (NaN passes through) and a constant
@@ -276,19 +230,12 @@ impl Interp {
         }
     }
 
-    #[inline(never)]
     fn nf_binary(&mut self, p: &Program, op: BinOp, a: &Expr, b: &Expr, span: Span) -> f32 {
-        let x = match self.num_operand(a) {
-            Some(x) => x,
-            None => self.nf(p, a),
-        };
+        let x = self.nf(p, a);
         if x.is_nan() {
             return x;
         }
-        let y = match self.num_operand(b) {
-            Some(y) => y,
-            None => self.nf(p, b),
-        };
+        let y = self.nf(p, b);
         if y.is_nan() {
             return y;
         }
@@ -378,7 +325,7 @@ impl Interp {
                     _ => {}
                 }
             }
-            ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
+            ExprKind::Binary(op, a, b) if op.is_num_arith() => {
                 return Ok(self.num_arith(p, *op, a, b, e.span)? as f64);
             }
             _ => {}
@@ -495,33 +442,6 @@ impl Interp {
             },
             _ => None,
         }
-    }
-
-    /// A `num` operand: a leaf, or `a{i}` of a local or global 1-D array with a leaf index,
-    /// without a call.
-    #[inline(always)]
-    fn num_operand(&self, e: &Expr) -> Option<f32> {
-        if let ExprKind::Load(pl) = &e.kind
-            && let [crate::ir::PathOp::Index(es)] = &*pl.path
-            && let [ie] = &**es
-        {
-            let arr = match pl.root {
-                crate::ir::Root::Local(s) => self.stack.get(self.bp + s as usize),
-                crate::ir::Root::Global(g) => self.globals.get(g as usize),
-                crate::ir::Root::Ref(_) => None,
-            };
-            if let (Some(Value::Array(a)), Some(i)) =
-                (arr, self.num_leaf(ie).and_then(super::value::f32_int))
-                && a.rank == 1
-                && i >= 1
-                && i as u32 <= a.dims[0]
-                && let Some(Value::Num(v)) = a.data.get((i - 1) as usize)
-            {
-                return Some(*v);
-            }
-            return None;
-        }
-        self.num_leaf(e)
     }
 
     #[inline]
@@ -688,19 +608,6 @@ impl Interp {
             format!("internal error: expected a {expected} value, got {got:?}"),
         )
     }
-}
-
-#[inline]
-fn is_num_arith(op: BinOp) -> bool {
-    matches!(
-        op,
-        BinOp::NumAdd
-            | BinOp::NumSub
-            | BinOp::NumMul
-            | BinOp::NumDiv
-            | BinOp::NumIntDiv
-            | BinOp::NumMod
-    )
 }
 
 /// Hamilton product of quaternions `[w, x, y, z]`.

@@ -55,7 +55,7 @@ pub(crate) enum WalkErr {
     Shape,
 }
 
-fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
+pub(crate) fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
     match v {
         Value::Record(fs) => fs.get(f as usize).ok_or(WalkErr::Shape),
         Value::Absent => Err(WalkErr::NotPresent),
@@ -63,7 +63,7 @@ fn field(v: &Value, f: u16) -> Result<&Value, WalkErr> {
     }
 }
 
-fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
+pub(crate) fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
     match v {
         Value::Record(fs) => fs.get_mut(f as usize).ok_or(WalkErr::Shape),
         Value::Absent => Err(WalkErr::NotPresent),
@@ -71,7 +71,7 @@ fn field_mut(v: &mut Value, f: u16) -> Result<&mut Value, WalkErr> {
     }
 }
 
-fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
+pub(crate) fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
     match v {
         Value::Array(a) => match a.offset(idx) {
             Some(o) => a.data.get(o).ok_or(WalkErr::Shape),
@@ -82,7 +82,7 @@ fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> {
     }
 }
 
-fn oob(a: &Array, idx: &[i64]) -> WalkErr {
+pub(crate) fn oob(a: &Array, idx: &[i64]) -> WalkErr {
     WalkErr::OutOfBounds {
         idx: idx.to_vec(),
         dims: a.sizes().to_vec(),
@@ -100,7 +100,7 @@ fn step(v: &Value, s: Step) -> Result<&Value, WalkErr> {
     }
 }
 
-fn step_mut(v: &mut Value, s: Step) -> Result<&mut Value, WalkErr> {
+pub(crate) fn step_mut(v: &mut Value, s: Step) -> Result<&mut Value, WalkErr> {
     match s {
         Step::Field(f) => field_mut(v, f),
         Step::Elem(o) => match v {
@@ -252,19 +252,6 @@ impl Interp {
         r
     }
 
-    /// The root value of a place (fast paths).
-    #[inline(always)]
-    fn root_ref(&self, root: Root) -> Result<&Value, WalkErr> {
-        match root {
-            Root::Local(s) => self.stack.get(self.bp + s as usize).ok_or(WalkErr::Shape),
-            Root::Global(g) => self.globals.get(g as usize).ok_or(WalkErr::Shape),
-            Root::Ref(k) => {
-                let r = self.refs.get(self.rbp + k as usize).ok_or(WalkErr::Shape)?;
-                self.abs_get(r)
-            }
-        }
-    }
-
     /// `a{i}` on a 1-D array: the element's offset, or the walk error.
     #[inline(always)]
     fn elem1_offset(a: &Array, i: i64) -> Result<usize, WalkErr> {
@@ -273,37 +260,6 @@ impl Interp {
         } else {
             Err(oob(a, &[i]))
         }
-    }
-
-    /// Read a `num` place without copying anything else.
-    pub(crate) fn load_f32(&mut self, p: &Program, pl: &Place) -> Exec<Option<f32>> {
-        // Fast path: `a{i}` of a 1-D array.
-        if let [PathOp::Index(es)] = &*pl.path
-            && let [ie] = &**es
-        {
-            let i = self.eval_index(p, ie)?;
-            let r = match self.root_ref(pl.root) {
-                Ok(Value::Array(a)) => match Self::elem1_offset(a, i) {
-                    Ok(o) => match a.data.get(o) {
-                        Some(Value::Num(x)) => return Ok(Some(*x)),
-                        _ => Ok(None),
-                    },
-                    Err(e) => Err(e),
-                },
-                Ok(Value::Absent) => Err(WalkErr::NotPresent),
-                Ok(_) => Err(WalkErr::Shape),
-                Err(e) => Err(e),
-            };
-            return r.map_err(|e| self.walk_err(e, pl.span));
-        }
-        let mark = self.push_indices(p, pl)?;
-        let r = match self.read_walk(pl, mark) {
-            Ok(Value::Num(x)) => Ok(Some(*x)),
-            Ok(_) => Ok(None),
-            Err(e) => Err(self.walk_err(e, pl.span)),
-        };
-        self.idx.truncate(mark);
-        r
     }
 
     /// Resolve a place to an absolute reference (for reference arguments).
@@ -478,7 +434,7 @@ impl Interp {
         }
     }
 
-    fn dims_error(&self, span: Span) -> super::Unwind {
+    pub(crate) fn dims_error(&self, span: Span) -> super::Unwind {
         self.error(
             errnum::ERR_NOTEQDIM,
             span,
@@ -488,7 +444,7 @@ impl Interp {
 }
 
 /// Arrays may only be replaced by arrays of the same sizes.
-fn same_dims(old: &Value, new: &Value) -> bool {
+pub(crate) fn same_dims(old: &Value, new: &Value) -> bool {
     match (old, new) {
         (Value::Array(a), Value::Array(b)) => a.dims == b.dims && a.rank == b.rank,
         _ => true,

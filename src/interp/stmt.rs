@@ -19,25 +19,43 @@ enum Resume {
 impl Interp {
     /// Execute a statement list.
     pub(crate) fn exec_block(&mut self, p: &Program, b: &Block) -> Exec<()> {
-        let n = b.stmts.len();
+        self.run_block(
+            p,
+            &b.stmts,
+            &b.labels,
+            |s| s.span,
+            |it, s| it.exec_stmt(p, s),
+        )
+    }
+
+    /// The statement loop of both engines: a step per statement (with the per-statement
+    /// slow path when it is due), the ERROR handler protocol and GOTO.
+    #[inline(always)]
+    pub(crate) fn run_block<S>(
+        &mut self,
+        p: &Program,
+        stmts: &[S],
+        labels: &[(u32, u32)],
+        span: impl Fn(&S) -> Span,
+        mut run: impl FnMut(&mut Interp, &S) -> Exec<()>,
+    ) -> Exec<()> {
+        let n = stmts.len();
         let mut i = 0usize;
         let mut retries = 0u32;
         while i < n {
-            let s = &b.stmts[i];
+            let s = &stmts[i];
             self.steps += 1;
             if self.steps >= self.next_poll {
-                self.poll(p, s.span)?;
+                self.poll(p, span(s))?;
             }
-            let r = match &s.kind {
-                StmtKind::AssignNum { place, value } => self.assign_num(p, place, value),
-                _ => self.exec_stmt(p, s),
-            };
-            match r {
+            match run(self, s) {
                 Ok(()) => {
                     i += 1;
                     retries = 0;
                 }
-                Err(u) => i = self.after_unwind(p, u, &b.labels, s.span, i, &mut retries)?,
+                // RETURN leaves every block of the routine: no handler, no label to look at.
+                Err(Unwind::Return) => return Err(Unwind::Return),
+                Err(u) => i = self.after_unwind(p, u, labels, span(s), i, &mut retries)?,
             }
         }
         Ok(())
@@ -101,7 +119,8 @@ impl Interp {
             }
             StmtKind::LateCall { name, args, module } => {
                 let n = self.eval_str(p, name)?;
-                self.late_call(p, &n, args, *module, s.span)
+                let code = self.code.clone();
+                self.late_call(&code, &n, args, None, *module, s.span)
             }
             StmtKind::If {
                 branches,
@@ -118,7 +137,7 @@ impl Interp {
                 }
             }
             StmtKind::While { cond, body } => {
-                let head = s.span.start_point().merge(cond.span);
+                let head = super::compile::while_head(s.span, cond);
                 while self.eval_bool(p, cond)? {
                     if body.stmts.is_empty() {
                         self.step(p, head)?;
@@ -163,47 +182,85 @@ impl Interp {
     }
 
     /// `place := value` for `num`.
-    #[inline(always)]
     fn assign_num(
         &mut self,
         p: &Program,
         place: &crate::ir::Place,
         value: &crate::ir::Expr,
     ) -> Exec<()> {
-        let x = self.nf(p, value);
-        if x.is_nan() {
-            return Err(self.take_pending(value.span));
-        }
-        if let (crate::ir::Root::Local(s), true) = (place.root, place.path.is_empty())
-            && let Some(slot) = self.stack.get_mut(self.bp + s as usize)
-        {
-            match slot {
-                Value::Num(old) => *old = x,
-                other => *other = Value::Num(x),
-            }
-            return Ok(());
-        }
-        // `a{i} := x` on a local or global 1-D array of num, inline.
-        if let [crate::ir::PathOp::Index(es)] = &*place.path
-            && let [ie] = &**es
-            && let Some(ix) = self.num_leaf(ie)
-        {
-            let arr = match place.root {
-                crate::ir::Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
-                crate::ir::Root::Global(g) => self.globals.get_mut(g as usize),
-                crate::ir::Root::Ref(_) => None,
-            };
-            if let (Some(Value::Array(a)), Some(i)) = (arr, super::value::f32_int(ix))
-                && a.rank == 1
-                && i >= 1
-                && i as u32 <= a.dims[0]
-                && let Some(Value::Num(v)) = a.data.get_mut((i - 1) as usize)
-            {
-                *v = x;
-                return Ok(());
-            }
-        }
+        let x = self.eval_num(p, value)?;
         self.store(p, place, Value::Num(x))
+    }
+
+    /// TEST: the index of the first case list holding a value equal to the subject `v`
+    /// (`None`: the DEFAULT), case values evaluated in order up to the match.
+    pub(crate) fn test_case<'a>(
+        &mut self,
+        p: &Program,
+        v: &Value,
+        cases: impl Iterator<Item = &'a [crate::ir::Expr]>,
+    ) -> Exec<Option<usize>> {
+        for (k, vals) in cases.enumerate() {
+            for e in vals {
+                let c = self.eval(p, e)?;
+                if values_equal(v, &c) {
+                    return Ok(Some(k));
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// FOR with evaluated bounds and step: the loop variable in value slot `idx` (absolute)
+    /// takes each value in turn while `body` runs; an empty body counts a step at `head`
+    /// per iteration.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn for_loop(
+        &mut self,
+        p: &Program,
+        idx: usize,
+        (a, b, step): (f32, f32, Option<f32>),
+        span: Span,
+        head: Span,
+        empty: bool,
+        mut body: impl FnMut(&mut Interp) -> Exec<()>,
+    ) -> Exec<()> {
+        let st = match step {
+            Some(st) => st,
+            None if a > b => -1.0,
+            None => 1.0,
+        };
+        if st == 0.0 || !st.is_finite() {
+            return Err(self.error(
+                errnum::ERR_ARGVALERR,
+                span,
+                "the STEP of a FOR loop must not be zero",
+            ));
+        }
+        let mut i = a;
+        while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
+            match self.stack.get_mut(idx) {
+                Some(Value::Num(v)) => *v = i,
+                Some(v) => *v = Value::Num(i),
+                None => {}
+            }
+            if empty {
+                self.step(p, head)?;
+            } else {
+                body(self)?;
+            }
+            let next = i + st;
+            if next == i {
+                return Err(self.error(
+                    errnum::ERR_NUM_LIMIT,
+                    span,
+                    format!("the FOR counter cannot advance past {i} in num precision"),
+                ));
+            }
+            i = next;
+        }
+        Ok(())
     }
 
     #[inline(never)]
@@ -215,17 +272,12 @@ impl Interp {
         default: Option<&Block>,
     ) -> Exec<()> {
         let v = self.eval(p, subject)?;
-        for (vals, b) in cases {
-            for e in vals {
-                let c = self.eval(p, e)?;
-                if values_equal(&v, &c) {
-                    return self.exec_block(p, b);
-                }
-            }
-        }
-        match default {
-            Some(b) => self.exec_block(p, b),
-            None => Ok(()),
+        match self.test_case(p, &v, cases.iter().map(|(vals, _)| vals.as_slice()))? {
+            Some(k) => self.exec_block(p, &cases[k].1),
+            None => match default {
+                Some(b) => self.exec_block(p, b),
+                None => Ok(()),
+            },
         }
     }
 
@@ -244,42 +296,20 @@ impl Interp {
         let a = self.eval_num(p, from)?;
         let b = self.eval_num(p, to)?;
         let st = match step {
-            Some(e) => self.eval_num(p, e)?,
-            None if a > b => -1.0,
-            None => 1.0,
+            Some(e) => Some(self.eval_num(p, e)?),
+            None => None,
         };
-        if st == 0.0 || !st.is_finite() {
-            return Err(self.error(
-                errnum::ERR_ARGVALERR,
-                span,
-                "the STEP of a FOR loop must not be zero",
-            ));
-        }
-        let idx = self.bases().0 + slot as usize;
+        let idx = self.bp + slot as usize;
         let head = super::compile::loop_head(span, to, step);
-        let mut i = a;
-        while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
-            match self.stack.get_mut(idx) {
-                Some(Value::Num(v)) => *v = i,
-                Some(v) => *v = Value::Num(i),
-                None => {}
-            }
-            if body.stmts.is_empty() {
-                self.step(p, head)?;
-            } else {
-                self.exec_block(p, body)?;
-            }
-            let next = i + st;
-            if next == i {
-                return Err(self.error(
-                    errnum::ERR_NUM_LIMIT,
-                    span,
-                    format!("the FOR counter cannot advance past {i} in num precision"),
-                ));
-            }
-            i = next;
-        }
-        Ok(())
+        self.for_loop(
+            p,
+            idx,
+            (a, b, st),
+            span,
+            head,
+            body.stmts.is_empty(),
+            |it| it.exec_block(p, body),
+        )
     }
 
     #[inline(never)]
@@ -377,11 +407,6 @@ impl Interp {
             self.poll(p, span)?;
         }
         Ok(())
-    }
-
-    /// The per-statement slow path (for callers outside `exec_block`).
-    pub(crate) fn poll_at(&mut self, p: &Program, span: Span) -> Exec<()> {
-        self.poll(p, span)
     }
 
     /// The per-statement slow path: budget, hook, interrupts.

@@ -129,6 +129,30 @@ impl Value {
         Some(out)
     }
 
+    /// Make this value equal to `v`, reusing its allocations where the shapes agree (a
+    /// record of as many components, an array of the same sizes).
+    pub fn reset_from(&mut self, v: &Value) {
+        match (self, v) {
+            (Value::Record(a), Value::Record(b)) if a.len() == b.len() => {
+                for (x, y) in a.iter_mut().zip(b.iter()) {
+                    match (x, y) {
+                        (Value::Num(x), Value::Num(y)) => *x = *y,
+                        (x, y) => x.reset_from(y),
+                    }
+                }
+            }
+            (Value::Array(a), Value::Array(b))
+                if a.dims == b.dims && a.rank == b.rank && a.data.len() == b.data.len() =>
+            {
+                for (x, y) in a.data.iter_mut().zip(b.data.iter()) {
+                    x.reset_from(y);
+                }
+            }
+            (Value::Num(x), Value::Num(y)) => *x = *y,
+            (me, v) => *me = v.clone(),
+        }
+    }
+
     /// A record of `num` components from f64 values (rounded to single precision).
     pub fn num_record(vals: &[f64]) -> Value {
         Value::Record(vals.iter().map(|&x| Value::Num(x as f32)).collect())
@@ -264,6 +288,28 @@ mod tests {
         assert_eq!(a.offset(&[3, 1]), None);
         assert_eq!(a.offset(&[0, 1]), None);
         assert_eq!(a.offset(&[1]), None);
+    }
+
+    #[test]
+    fn reset_from_makes_equal_values() {
+        let template = Value::Record(Box::new([
+            Value::Num(0.0),
+            Value::str(""),
+            Value::Record(Box::new([Value::Bool(false)])),
+        ]));
+        let mut same = Value::Record(Box::new([
+            Value::Num(3.0),
+            Value::str("x"),
+            Value::Record(Box::new([Value::Bool(true)])),
+        ]));
+        same.reset_from(&template);
+        assert_eq!(same, template);
+        let mut other = Value::Num(1.0);
+        other.reset_from(&template);
+        assert_eq!(other, template);
+        let mut shorter = Value::Record(Box::new([Value::Num(1.0)]));
+        shorter.reset_from(&template);
+        assert_eq!(shorter, template);
     }
 
     #[test]

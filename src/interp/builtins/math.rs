@@ -16,15 +16,19 @@ pub(super) fn register(r: &mut Registry) {
     });
     r.add(r"FUNC num Round(num Val, \num Dec)", |cx| {
         let dec = dec(cx, 1)?;
-        m::round_num(cx.num(0)?, dec)
-            .map(Value::Num)
-            .map_err(|e| cx.rt(e))
+        let x = cx.num(0)?;
+        if let Some(r) = whole(x, dec, f32::round) {
+            return Ok(Value::Num(r));
+        }
+        m::round_num(x, dec).map(Value::Num).map_err(|e| cx.rt(e))
     });
     r.add(r"FUNC num Trunc(num Val, \num Dec)", |cx| {
         let dec = dec(cx, 1)?;
-        m::trunc_num(cx.num(0)?, dec)
-            .map(Value::Num)
-            .map_err(|e| cx.rt(e))
+        let x = cx.num(0)?;
+        if let Some(r) = whole(x, dec, f32::trunc) {
+            return Ok(Value::Num(r));
+        }
+        m::trunc_num(x, dec).map(Value::Num).map_err(|e| cx.rt(e))
     });
     r.add(r"FUNC dnum RoundDnum(dnum Val, \num Dec)", |cx| {
         let dec = dec(cx, 1)?;
@@ -74,6 +78,14 @@ pub(super) fn register(r: &mut Registry) {
     });
 }
 
+/// `Round`/`Trunc` to no decimals of a `num` below 2^23 in magnitude, where the runtime
+/// library's decimal rule gives what `f` gives: the shortest decimal of such a number
+/// lies on the same side of every integer and every half-integer as the number itself.
+/// A zero result is +0 (as the library's).
+pub(crate) fn whole(x: f32, dec: i32, f: fn(f32) -> f32) -> Option<f32> {
+    (dec == 0 && x.abs() < 8_388_608.0).then(|| f(x) + 0.0)
+}
+
 fn dec(cx: &Ctx<'_>, i: usize) -> Exec<i32> {
     Ok(match cx.opt_f64(i)? {
         Some(d) => d.clamp(i32::MIN as f64, i32::MAX as f64) as i32,
@@ -89,4 +101,45 @@ fn unary(cx: &mut Ctx<'_>, f: fn(f64) -> crate::functions::RtResult<f64>) -> Exe
 fn unary_d(cx: &mut Ctx<'_>, f: fn(f64) -> crate::functions::RtResult<f64>) -> Exec<Value> {
     let x = f(cx.f64(0)?).map_err(|e| cx.rt(e))?;
     Ok(Value::Dnum(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn whole_numbers_are_the_runtime_library_results() {
+        let mut xs: Vec<f32> = (-2000..2000).map(|i| i as f32 * 0.25).collect();
+        let mut s = 0x1234_5678_u32;
+        for _ in 0..50_000 {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            let x = f32::from_bits(s);
+            if x.is_finite() {
+                xs.push(x);
+            }
+            xs.push((s % 20_000_000) as f32 / 7.0 - 1_000_000.0);
+        }
+        xs.extend([-0.0, -0.4, -0.5, 0.4]);
+        for k in [0.5f32, 1.5, 2.5, 8_388_607.5, 4_194_303.5] {
+            for x in [
+                k,
+                -k,
+                f32::from_bits(k.to_bits() - 1),
+                f32::from_bits(k.to_bits() + 1),
+            ] {
+                xs.push(x);
+            }
+        }
+        for x in xs {
+            let bits = |r: crate::functions::RtResult<f32>| r.map(f32::to_bits);
+            if let Some(r) = whole(x, 0, f32::round) {
+                assert_eq!(Ok(r.to_bits()), bits(m::round_num(x, 0)), "Round({x})");
+            }
+            if let Some(r) = whole(x, 0, f32::trunc) {
+                assert_eq!(Ok(r.to_bits()), bits(m::trunc_num(x, 0)), "Trunc({x})");
+            }
+        }
+    }
 }

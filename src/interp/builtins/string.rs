@@ -15,7 +15,17 @@ pub(super) fn register(r: &mut Registry) {
         |cx| {
             let pos = cx.int(1, "ChPos")?;
             let len = cx.int(2, "Len")?;
-            let out = s::str_part(cx.str(0)?, pos, len).map_err(|e| cx.rt(e))?;
+            let text = cx.str(0)?;
+            // ASCII text (the usual case): the part is a slice of the same bytes.
+            if text.is_ascii()
+                && pos >= 1
+                && len >= 0
+                && pos.saturating_add(len - 1) <= text.len() as i64
+            {
+                let from = (pos - 1) as usize;
+                return Ok(Value::str(&text[from..from + len as usize]));
+            }
+            let out = s::str_part(text, pos, len).map_err(|e| cx.rt(e))?;
             cx.string(out)
         },
     );

@@ -26,7 +26,13 @@ pub(super) fn register(r: &mut Registry) {
         r"FUNC string NumToStr(num Val, num Dec, \switch Exp)",
         |cx| {
             let dec = cx.int(1, "Dec")?.clamp(-1, 99) as i32;
-            let s = f::num_to_str(cx.num(0)?, dec, cx.present(2)).map_err(|e| cx.rt(e))?;
+            let x = cx.num(0)?;
+            if !cx.present(2)
+                && let Some(s) = int_to_str(x, dec)
+            {
+                return Ok(Value::Str(s.into()));
+            }
+            let s = f::num_to_str(x, dec, cx.present(2)).map_err(|e| cx.rt(e))?;
             cx.string(s)
         },
     );
@@ -73,6 +79,25 @@ fn tp_write(cx: &mut Ctx<'_>) -> Exec<Value> {
     }
     cx.host().output(Output::TpWrite(s));
     Ok(Value::Absent)
+}
+
+/// `NumToStr(x, dec)` without `\Exp` for an integer `x` below 2^24 in magnitude (where the
+/// shortest decimal of the `num` is the integer itself), written directly: the common
+/// case, the same text as [`f::num_to_str`].
+pub(crate) fn int_to_str(x: f32, dec: i32) -> Option<String> {
+    use std::fmt::Write;
+    if !(0..=8).contains(&dec) || x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
+        return None;
+    }
+    let mut s = String::with_capacity(16);
+    let _ = write!(s, "{}", x as i32);
+    if dec > 0 {
+        s.push('.');
+        for _ in 0..dec {
+            s.push('0');
+        }
+    }
+    Some(s)
 }
 
 /// A value as ValToStr writes it.
@@ -143,5 +168,25 @@ fn flatten<'a>(lit: &'a f::LitValue, depth: usize, out: &mut Vec<&'a f::LitValue
             }
         }
         _ => out.push(lit),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_num_to_str_is_the_runtime_library_text() {
+        let mut xs: Vec<f32> = (-3000..3000).map(|i| i as f32).collect();
+        xs.extend([-0.0, 16_777_215.0, -16_777_215.0, 1_000_000.0, 8_388_608.0]);
+        for x in xs {
+            for dec in 0..=8 {
+                let fast = int_to_str(x, dec).expect("an integer below 2^24");
+                assert_eq!(Ok(fast), f::num_to_str(x, dec, false), "{x} {dec}");
+            }
+        }
+        assert_eq!(int_to_str(0.5, 0), None);
+        assert_eq!(int_to_str(16_777_216.0, 0), None);
+        assert_eq!(int_to_str(3.0, -1), None);
     }
 }

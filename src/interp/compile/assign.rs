@@ -2,12 +2,13 @@
 //! `RETURN …` in a `FUNC num`), fused with the expression's top operation so that the
 //! statement is a single closure.
 
-use super::num::{Elem, Konst, NumFn, Src, bin, is_num_arith, num, opnd};
-use super::{Code, StmtFn};
+use super::num::{Elem, Konst, NumFn, Src, bin, num, opnd};
+use super::place::CPlace;
+use super::{Code, Cx, StmtFn};
 use crate::interp::Interp;
 use crate::interp::error::{Exec, Unwind};
 use crate::interp::value::Value;
-use crate::ir::{BinOp, Expr, ExprKind, Place, Program, Root};
+use crate::ir::{BinOp, Expr, ExprKind, Place, Root};
 use crate::source::Span;
 
 /// Where the computed `num` goes.
@@ -19,21 +20,21 @@ pub(crate) enum Sink {
     /// An element of a 1-D array.
     Elem(Elem, Place),
     /// Any other place.
-    Place(Place),
+    Place(CPlace),
     /// The function result (`RETURN`).
     Return,
 }
 
 impl Sink {
     /// Where `place := …` writes.
-    pub(crate) fn of(place: &Place) -> Sink {
+    pub(crate) fn of(cx: &Cx, place: &Place) -> Sink {
         let pl = place.clone();
         match (place.root, place.path.is_empty()) {
             (Root::Local(s), true) => Sink::Local(s, pl),
             (Root::Global(g), true) => Sink::Global(g, pl),
             _ => match Elem::of(place) {
                 Some(el) => Sink::Elem(el, pl),
-                None => Sink::Place(pl),
+                None => Sink::Place(CPlace::new(cx, place)),
             },
         }
     }
@@ -56,9 +57,12 @@ impl Sink {
                 Some(slot) => *slot = x,
                 None => return it.store(&c.prog, pl, Value::Num(x)),
             },
-            Sink::Place(pl) => return it.store(&c.prog, pl, Value::Num(x)),
+            Sink::Place(pl) => return pl.store(it, c, Value::Num(x)),
             Sink::Return => {
-                it.ret = Value::Num(x);
+                match &mut it.ret {
+                    Value::Num(r) => *r = x,
+                    r => *r = Value::Num(x),
+                }
                 return Err(Unwind::Return);
             }
         }
@@ -76,26 +80,35 @@ fn finish(it: &mut Interp, c: &Code, sink: &Sink, x: f32, vs: Span) -> Exec<()> 
 }
 
 /// A statement computing `value` into `sink`.
-pub(crate) fn num_into(p: &Program, value: &Expr, sink: Sink) -> StmtFn {
+pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
     let vs = value.span;
     match &value.kind {
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
-            let b = opnd(p, b);
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
+            let b = opnd(cx, b);
             match b.konst() {
-                Some(k) => arith_into(*op, opnd(p, a), Konst(k), vs, sink),
-                None => arith_into(*op, opnd(p, a), b, vs, sink),
+                Some(k) => arith_into(*op, opnd(cx, a), Konst(k), vs, sink),
+                None => arith_into(*op, opnd(cx, a), b, vs, sink),
             }
         }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, d, is_mod) = (opnd(p, a), super::DivK::new(*k), *is_mod);
-            Box::new(move |it, c| {
-                let x = a.get(it, c);
-                let x = it.mod_div_c(x, &d, is_mod, vs);
-                finish(it, c, &sink, x, vs)
-            })
+            let (a, d) = (opnd(cx, a), super::DivK::new(*k));
+            // One closure for MOD and one for DIV: the choice is made here, not per run.
+            macro_rules! modk {
+                ($m:literal) => {
+                    Box::new(move |it, c| {
+                        let x = a.get(it, c);
+                        let x = it.mod_div_c(x, &d, $m, vs);
+                        finish(it, c, &sink, x, vs)
+                    })
+                };
+            }
+            match is_mod {
+                true => modk!(true),
+                false => modk!(false),
+            }
         }
         _ => {
-            let f: NumFn = num(p, value);
+            let f: NumFn = num(cx, value);
             Box::new(move |it, c| {
                 let x = f(it, c);
                 finish(it, c, &sink, x, vs)

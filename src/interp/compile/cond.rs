@@ -3,14 +3,14 @@
 //! on the tree-walking path.
 
 use super::num::{Konst, Src, opnd};
-use super::{BoolFn, Code};
+use super::{BoolFn, Code, Cx};
 use crate::interp::Interp;
 use crate::interp::value::Value;
-use crate::ir::{BinOp, Expr, ExprKind, Program, UnOp};
+use crate::ir::{BinOp, Expr, ExprKind, UnOp};
 use crate::source::Span;
 
 /// Compile a `bool` expression.
-pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
+pub(crate) fn cond(cx: &Cx, e: &Expr) -> BoolFn {
     match &e.kind {
         ExprKind::Bool(b) => {
             let b = *b;
@@ -27,14 +27,14 @@ pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
             b,
         ) => {
             let (sa, sb) = (a.span, b.span);
-            let b = opnd(p, b);
+            let b = opnd(cx, b);
             match b.konst() {
-                Some(k) => cmp(*op, opnd(p, a), sa, Konst(k), sb),
-                None => cmp(*op, opnd(p, a), sa, b, sb),
+                Some(k) => cmp(*op, opnd(cx, a), sa, Konst(k), sb),
+                None => cmp(*op, opnd(cx, a), sa, b, sb),
             }
         }
         ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
-            let (a, b) = (cond(p, a), cond(p, b));
+            let (a, b) = (cond(cx, a), cond(cx, b));
             macro_rules! logic {
                 (|$x:ident, $y:ident| $body:expr) => {
                     Box::new(move |it, c| {
@@ -51,8 +51,16 @@ pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
                 _ => logic!(|x, y| x != y),
             }
         }
+        ExprKind::Binary(op @ (BinOp::Eq | BinOp::Ne), a, b)
+            if super::val::str_eq(cx, a, b, true).is_some() =>
+        {
+            match super::val::str_eq(cx, a, b, *op == BinOp::Eq) {
+                Some(f) => f,
+                None => fallback(e),
+            }
+        }
         ExprKind::Unary(UnOp::Not, a) => {
-            let a = cond(p, a);
+            let a = cond(cx, a);
             Box::new(move |it, c| Ok(!a(it, c)?))
         }
         ExprKind::Local(s) => {
@@ -63,11 +71,14 @@ pub(crate) fn cond(p: &Program, e: &Expr) -> BoolFn {
                 _ => it.eval_bool(&c.prog, &e),
             })
         }
-        _ => {
-            let e = e.clone();
-            Box::new(move |it, c| it.eval_bool(&c.prog, &e))
-        }
+        _ => fallback(e),
     }
+}
+
+/// The tree-walking engine's evaluation of `e`.
+fn fallback(e: &Expr) -> BoolFn {
+    let e = e.clone();
+    Box::new(move |it, c| it.eval_bool(&c.prog, &e))
 }
 
 /// A `num` comparison (a failing operand raises its error at the operand's span).

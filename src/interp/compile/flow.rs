@@ -1,9 +1,11 @@
-//! Running compiled blocks and loops: the statement loop (steps, budget, hook, interrupts,
-//! the ERROR handler protocol and GOTO, shared with the tree-walking path), FOR and TEST.
+//! Running compiled blocks, FOR and TEST on the skeleton they share with the tree-walking
+//! engine (`Interp::run_block`, `Interp::for_loop`, `Interp::test_case` in `stmt.rs`).
 
+use std::sync::Arc;
+
+use super::val::ValFn;
 use super::{CBlock, Code, NumFn};
 use crate::interp::Interp;
-use crate::interp::errnum;
 use crate::interp::error::Exec;
 use crate::interp::value::{Value, values_equal};
 use crate::ir::Expr;
@@ -21,35 +23,39 @@ pub(crate) struct CFor {
     pub head: Span,
 }
 
-/// A compiled TEST: the subject and case values as lowered, the bodies compiled.
+/// A compiled TEST: the subject and the case values, the bodies compiled.
 pub(crate) struct CTest {
-    pub subject: Expr,
-    pub cases: Box<[(Box<[Expr]>, CBlock)]>,
+    pub cases: Cases,
+    pub bodies: Box<[CBlock]>,
     pub default: Option<CBlock>,
+}
+
+/// A compiled `num` and its span.
+pub(crate) type SpannedNum = (NumFn, Span);
+
+/// The subject of a TEST and its case values, one list per CASE.
+pub(crate) enum Cases {
+    /// A `num` subject with constant case values: (value, index of its CASE), in order.
+    NumK(SpannedNum, Box<[(f32, usize)]>),
+    /// A `num` subject with `num` case values, compared as numbers.
+    Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
+    /// A string subject with constant case strings.
+    Str(ValFn, Box<[Box<[Arc<str>]>]>),
+    /// Anything else, as lowered (structural equality).
+    Any(Expr, Box<[Box<[Expr]>]>),
 }
 
 impl Interp {
     /// Execute a compiled statement list.
     #[inline(always)]
     pub(crate) fn exec_cblock(&mut self, c: &Code, b: &CBlock) -> Exec<()> {
-        let n = b.stmts.len();
-        let mut i = 0usize;
-        let mut retries = 0u32;
-        while i < n {
-            let s = &b.stmts[i];
-            self.steps += 1;
-            if self.steps >= self.next_poll {
-                self.poll(&c.prog, s.span)?;
-            }
-            match (s.run)(self, c) {
-                Ok(()) => {
-                    i += 1;
-                    retries = 0;
-                }
-                Err(u) => i = self.after_unwind(&c.prog, u, &b.labels, s.span, i, &mut retries)?,
-            }
-        }
-        Ok(())
+        self.run_block(
+            &c.prog,
+            &b.stmts,
+            &b.labels,
+            |s| s.span,
+            |it, s| (s.run)(it, c),
+        )
     }
 
     /// A compiled `num` evaluated, or its pending error at `span`.
@@ -67,57 +73,54 @@ impl Interp {
         let a = self.cnum(c, &f.from)?;
         let b = self.cnum(c, &f.to)?;
         let st = match &f.step {
-            Some(e) => self.cnum(c, e)?,
-            None if a > b => -1.0,
-            None => 1.0,
+            Some(e) => Some(self.cnum(c, e)?),
+            None => None,
         };
-        if st == 0.0 || !st.is_finite() {
-            return Err(self.error(
-                errnum::ERR_ARGVALERR,
-                f.span,
-                "the STEP of a FOR loop must not be zero",
-            ));
-        }
         let idx = self.bp + f.slot as usize;
-        let mut i = a;
-        while (st > 0.0 && i <= b) || (st < 0.0 && i >= b) {
-            match self.stack.get_mut(idx) {
-                Some(Value::Num(v)) => *v = i,
-                Some(v) => *v = Value::Num(i),
-                None => {}
-            }
-            if f.body.stmts.is_empty() {
-                self.step(&c.prog, f.head)?;
-            } else {
-                self.exec_cblock(c, &f.body)?;
-            }
-            let next = i + st;
-            if next == i {
-                return Err(self.error(
-                    errnum::ERR_NUM_LIMIT,
-                    f.span,
-                    format!("the FOR counter cannot advance past {i} in num precision"),
-                ));
-            }
-            i = next;
-        }
-        Ok(())
+        let empty = f.body.stmts.is_empty();
+        self.for_loop(&c.prog, idx, (a, b, st), f.span, f.head, empty, |it| {
+            it.exec_cblock(c, &f.body)
+        })
     }
 
     pub(crate) fn exec_ctest(&mut self, c: &Code, t: &CTest) -> Exec<()> {
         let p = &*c.prog;
-        let v = self.eval(p, &t.subject)?;
-        for (vals, b) in t.cases.iter() {
-            for e in vals.iter() {
-                let x = self.eval(p, e)?;
-                if values_equal(&v, &x) {
-                    return self.exec_cblock(c, b);
-                }
+        let hit = match &t.cases {
+            Cases::NumK(subject, vals) => {
+                let x = self.cnum(c, subject)?;
+                vals.iter().find(|(v, _)| *v == x).map(|(_, k)| *k)
             }
-        }
-        match &t.default {
+            Cases::Num(subject, cases) => {
+                let x = self.cnum(c, subject)?;
+                let mut hit = None;
+                'cases: for (k, vals) in cases.iter().enumerate() {
+                    for v in vals.iter() {
+                        if self.cnum(c, v)? == x {
+                            hit = Some(k);
+                            break 'cases;
+                        }
+                    }
+                }
+                hit
+            }
+            Cases::Str(subject, cases) => match subject(self, c)? {
+                Value::Str(s) => cases.iter().position(|vals| vals.contains(&s)),
+                other => cases.iter().position(|vals| {
+                    vals.iter()
+                        .any(|v| values_equal(&other, &Value::Str(v.clone())))
+                }),
+            },
+            Cases::Any(subject, cases) => {
+                let v = self.eval(p, subject)?;
+                self.test_case(p, &v, cases.iter().map(|vals| &vals[..]))?
+            }
+        };
+        match hit.and_then(|k| t.bodies.get(k)) {
             Some(b) => self.exec_cblock(c, b),
-            None => Ok(()),
+            None => match &t.default {
+                Some(b) => self.exec_cblock(c, b),
+                None => Ok(()),
+            },
         }
     }
 }

@@ -3,10 +3,11 @@
 //! for shapes without a compiled form. As there, NaN signals an error kept in
 //! `Interp::pending`.
 
-use super::{Code, DivK};
+use super::place::CPlace;
+use super::{Code, Cx, DivK};
 use crate::interp::Interp;
 use crate::interp::value::{Value, f32_int};
-use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Program, Root, UnOp};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Root, UnOp};
 use crate::source::Span;
 
 /// A compiled `num` expression (NaN: an error is pending).
@@ -22,16 +23,22 @@ pub(crate) enum Leaf {
     G(u32, Span),
     /// `a{i}` of a 1-D local or global array with a leaf index, and the IR load (slow path).
     E(Box<(Elem, Expr)>),
+    /// Any other place holding a `num`, and the expression's span.
+    P(Box<(CPlace, Span)>),
 }
 
 impl Leaf {
     /// The leaf for `e`, if it is one.
-    fn of(e: &Expr) -> Option<Leaf> {
+    fn of(cx: &Cx, e: &Expr) -> Option<Leaf> {
         Some(match &e.kind {
             ExprKind::Num(x) => Leaf::K(*x),
             ExprKind::Local(s) => Leaf::L(*s, e.span),
             ExprKind::Global(g) => Leaf::G(*g, e.span),
-            ExprKind::Load(pl) => Leaf::E(Box::new((Elem::of(pl)?, e.clone()))),
+            ExprKind::Load(pl) => match Elem::of(pl) {
+                Some(el) => Leaf::E(Box::new((el, e.clone()))),
+                None if cx.is_num(e) => Leaf::P(Box::new((CPlace::new(cx, pl), e.span))),
+                None => return None,
+            },
             _ => return None,
         })
     }
@@ -50,6 +57,7 @@ impl Leaf {
                 _ => it.leaf_slow(c, ExprKind::Global(*g), *span),
             },
             Leaf::E(b) => elem_get(b, it, c),
+            Leaf::P(b) => b.0.num(it, c, b.1),
         }
     }
 }
@@ -246,28 +254,28 @@ impl Elem {
 }
 
 /// An operand for `e`: a leaf, an operation on leaves, or a closure.
-pub(crate) fn opnd(p: &Program, e: &Expr) -> Opnd {
-    if let Some(l) = Leaf::of(e) {
+pub(crate) fn opnd(cx: &Cx, e: &Expr) -> Opnd {
+    if let Some(l) = Leaf::of(cx, e) {
         return Opnd::V(l);
     }
     match &e.kind {
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => {
-            if let (Some(a), Some(b)) = (Leaf::of(a), Leaf::of(b)) {
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
+            if let (Some(a), Some(b)) = (Leaf::of(cx, a), Leaf::of(cx, b)) {
                 return Opnd::B(Box::new((*op, a, b, e.span)));
             }
         }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            if let Some(a) = Leaf::of(a) {
+            if let Some(a) = Leaf::of(cx, a) {
                 return Opnd::M(Box::new((a, DivK::new(*k), *is_mod, e.span)));
             }
         }
         _ => {}
     }
-    Opnd::D(num(p, e))
+    Opnd::D(num(cx, e))
 }
 
 /// Compile a `num` expression.
-pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
+pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
     let span = e.span;
     match &e.kind {
         ExprKind::Num(x) => {
@@ -275,36 +283,59 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
             Box::new(move |_, _| x)
         }
         ExprKind::Local(_) | ExprKind::Global(_) => {
-            let o = opnd(p, e);
+            let o = opnd(cx, e);
             Box::new(move |it, c| o.get(it, c))
         }
-        ExprKind::Load(pl) if Elem::of(pl).is_some() => {
-            let o = opnd(p, e);
+        ExprKind::Load(pl) if Elem::of(pl).is_some() || cx.is_num(e) => {
+            let o = opnd(cx, e);
             Box::new(move |it, c| o.get(it, c))
         }
-        ExprKind::Binary(op, a, b) if is_num_arith(*op) => arith(*op, opnd(p, a), opnd(p, b), span),
+        ExprKind::Binary(op, a, b) if op.is_num_arith() => {
+            arith(*op, opnd(cx, a), opnd(cx, b), span)
+        }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, d, is_mod) = (opnd(p, a), DivK::new(*k), *is_mod);
-            Box::new(move |it, c| {
-                let x = a.get(it, c);
-                it.mod_div_c(x, &d, is_mod, span)
-            })
+            let (a, d) = (opnd(cx, a), DivK::new(*k));
+            macro_rules! modk {
+                ($m:literal) => {
+                    Box::new(move |it, c| {
+                        let x = a.get(it, c);
+                        it.mod_div_c(x, &d, $m, span)
+                    })
+                };
+            }
+            match is_mod {
+                true => modk!(true),
+                false => modk!(false),
+            }
         }
         ExprKind::Unary(UnOp::NumNeg, a) => {
-            let a = opnd(p, a);
+            let a = opnd(cx, a);
             Box::new(move |it, c| -a.get(it, c))
         }
         ExprKind::Call(r, args) => {
-            if p.routine(*r).simple {
-                let call = super::simple::SCall::new(p, *r, args, span);
+            if cx.p.routine(*r).simple {
+                let call = super::simple::SCall::new(cx, *r, args, span);
                 Box::new(move |it, c| it.call_simple(c, &call))
             } else {
-                let call = super::CCall::new(p, *r, args, span);
+                let call = super::CCall::new(cx, *r, args, span);
                 Box::new(move |it, c| {
                     let r = it.ccall(c, &call);
                     it.nf_of(r, span)
                 })
             }
+        }
+        ExprKind::Native(n, args) if super::natives::str_len(cx, *n, args).is_some() => {
+            super::natives::str_len(cx, *n, args).unwrap_or_else(|| fallback(e))
+        }
+        ExprKind::Native(n, args) if super::natives::math(cx, *n, args, span).is_some() => {
+            super::natives::math(cx, *n, args, span).unwrap_or_else(|| fallback(e))
+        }
+        ExprKind::Native(n, args) => {
+            let call = super::call::CNative::new(cx, *n, args, span);
+            Box::new(move |it, c| {
+                let r = it.cnative(c, &call);
+                it.nf_of(r, span)
+            })
         }
         _ => fallback(e),
     }
@@ -314,19 +345,6 @@ pub(crate) fn num(p: &Program, e: &Expr) -> NumFn {
 fn fallback(e: &Expr) -> NumFn {
     let e = e.clone();
     Box::new(move |it, c| it.nf(&c.prog, &e))
-}
-
-/// `+ - * / DIV MOD` on `num`.
-pub(crate) fn is_num_arith(op: BinOp) -> bool {
-    matches!(
-        op,
-        BinOp::NumAdd
-            | BinOp::NumSub
-            | BinOp::NumMul
-            | BinOp::NumDiv
-            | BinOp::NumIntDiv
-            | BinOp::NumMod
-    )
 }
 
 /// `a op b` for a `num` arithmetic operator (a constant right operand is read without

@@ -5,11 +5,11 @@
 //! then evaluated again with its frame, so hooks, interrupts and errors see exactly what
 //! the general path shows.
 
-use super::Code;
 use super::num::{NumFn, Opnd, Src, num, opnd};
+use super::{Code, Cx};
 use crate::interp::Interp;
 use crate::interp::call::MAX_DEPTH;
-use crate::ir::{Arg, Expr, ExprKind, PathOp, Program, RoutineId, Stmt, StmtKind, Ty};
+use crate::ir::{Arg, Expr, ExprKind, PathOp, RoutineId, Stmt, StmtKind, Ty};
 use crate::source::Span;
 
 /// A compiled call of a simple function.
@@ -37,14 +37,15 @@ enum SArg {
 }
 
 impl SCall {
-    pub(crate) fn new(p: &Program, rid: RoutineId, args: &[Arg], span: Span) -> SCall {
+    pub(crate) fn new(cx: &Cx, rid: RoutineId, args: &[Arg], span: Span) -> SCall {
+        let p = cx.p;
         let r = p.routine(rid);
         let cargs = r
             .params
             .iter()
             .zip(args.iter())
             .map(|(param, arg)| match arg {
-                Arg::Value(e) if param.ty == Ty::NUM => SArg::Num(opnd(p, e)),
+                Arg::Value(e) if param.ty == Ty::NUM => SArg::Num(opnd(cx, e)),
                 _ => SArg::Val(arg.clone()),
             })
             .collect();
@@ -67,10 +68,11 @@ impl SCall {
             ] if func_num && !arrays && pure(e) => Some((e, *span)),
             _ => None,
         };
-        let inline = body.map(|(e, span)| (num(p, e), span));
+        let callee = Cx::new(p, r);
+        let inline = body.map(|(e, span)| (num(&callee, e), span));
         let inlined = body
             .and_then(|(e, _)| Subst::new(r, args)?.apply(e))
-            .map(|e| num(p, &e));
+            .map(|e| num(cx, &e));
         SCall {
             rid,
             args: cargs,
@@ -187,7 +189,7 @@ fn read_only(e: &Expr) -> bool {
 }
 
 /// Does evaluating `e` leave everything as it was (no call, no I/O)?
-fn pure(e: &Expr) -> bool {
+pub(crate) fn pure(e: &Expr) -> bool {
     match &e.kind {
         ExprKind::Num(_)
         | ExprKind::Dnum(_)

@@ -1,0 +1,237 @@
+//! The natives programs call most (`StrLen`, `StrPart`, `NumToStr`, and `num` functions of
+//! one `num` such as `Sin`, `Sqrt`, `Trunc`), compiled straight into the call site while
+//! they run their standard implementation: a string argument is read in place, numbers
+//! come from their compiled form, and no argument list is built. Arguments are evaluated in order first, then checked with the same errors as
+//! the natives in `builtins/` (what the differential test holds them to).
+
+use super::num::num;
+use super::val::{StrPart, ValFn};
+use super::{Code, Cx, NumFn};
+use crate::interp::Interp;
+use crate::interp::errnum;
+use crate::interp::error::Exec;
+use crate::interp::value::Value;
+use crate::ir::{Arg, Expr, NativeId, Ty};
+use crate::source::Span;
+
+/// `StrLen(s)` as a `num` (NaN: an error is pending), when `n` is the standard `StrLen`.
+pub(crate) fn str_len(cx: &Cx, n: NativeId, args: &[Arg]) -> Option<NumFn> {
+    let [Arg::Value(s)] = args else {
+        return None;
+    };
+    if cx.standard_native(n)? != "StrLen" || cx.expr_ty(s) != Some(Ty::STRING) {
+        return None;
+    }
+    let s = StrPart::new(cx, s);
+    Some(Box::new(move |it, c| {
+        match s.with(it, c, |t| crate::functions::string::str_len(t) as f32) {
+            Ok(x) => x,
+            Err(u) => it.fail_nf(u),
+        }
+    }))
+}
+
+/// A `num` function of one `num` (`Sin`, `Sqrt`, `Abs`, `Trunc` …) compiled at its call
+/// site (NaN: an error is pending), when `n` is one of those and standard.
+pub(crate) fn math(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<NumFn> {
+    use crate::functions::math as m;
+    type F = fn(f64) -> crate::functions::RtResult<f64>;
+    let name = cx.standard_native(n)?;
+    let x = match args {
+        [Arg::Value(x)] | [Arg::Value(x), Arg::Absent] if cx.is_num(x) => num(cx, x),
+        _ => return None,
+    };
+    /// How the result is computed.
+    enum How {
+        /// `Round`/`Trunc` to whole numbers: the fast rule, else the library's.
+        Whole(
+            fn(f32) -> f32,
+            fn(f32, i32) -> crate::functions::RtResult<f32>,
+        ),
+        /// A library function on f64, its result rounded to `num`.
+        Lib(F),
+    }
+    let how = match (name, args.len()) {
+        ("Round", 2) => How::Whole(f32::round, m::round_num),
+        ("Trunc", 2) => How::Whole(f32::trunc, m::trunc_num),
+        ("Abs", 1) => How::Lib(|v| Ok(m::abs(v))),
+        ("Sqrt", 1) => How::Lib(m::sqrt),
+        ("Exp", 1) => How::Lib(m::exp),
+        ("Sin", 1) => How::Lib(m::sin),
+        ("Cos", 1) => How::Lib(m::cos),
+        ("Tan", 1) => How::Lib(m::tan),
+        ("ASin", 1) => How::Lib(m::asin),
+        ("ACos", 1) => How::Lib(m::acos),
+        ("ATan", 1) => How::Lib(m::atan),
+        _ => return None,
+    };
+    Some(Box::new(move |it, c| {
+        let v = x(it, c);
+        if v.is_nan() {
+            return v;
+        }
+        let r = match how {
+            How::Whole(f, lib) => match crate::interp::builtins::whole(v, 0, f) {
+                Some(r) => Ok(r),
+                None => lib(v, 0),
+            },
+            How::Lib(f) => f(v as f64).and_then(m::num_from_f64),
+        };
+        match r {
+            Ok(r) => r,
+            Err(e) => {
+                let u = it.rt_error(e, span);
+                it.fail_nf(u)
+            }
+        }
+    }))
+}
+
+/// A string function compiled at its call site, if `n` is one of those and standard.
+pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<ValFn> {
+    let name = cx.standard_native(n)?;
+    let arg = |k: usize| match args.get(k) {
+        Some(Arg::Value(e)) => Some(e),
+        _ => None,
+    };
+    let nums = |es: &[&Expr]| es.iter().all(|e| cx.is_num(e));
+    match name {
+        "StrLen" => {
+            let f = str_len(cx, n, args)?;
+            Some(Box::new(move |it, c| {
+                let x = f(it, c);
+                if x.is_nan() {
+                    return Err(it.take_pending(span));
+                }
+                Ok(Value::Num(x))
+            }))
+        }
+        "StrPart" => {
+            let (s, pos, len) = (arg(0)?, arg(1)?, arg(2)?);
+            if args.len() != 3 || cx.expr_ty(s) != Some(Ty::STRING) || !nums(&[pos, len]) {
+                return None;
+            }
+            // A string read that cannot fail, with numbers that have no side effects: the
+            // numbers may go first and the string be read in place after them.
+            let in_place = cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len);
+            let s = StrPart::new(cx, s);
+            let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
+            if in_place {
+                return Some(Box::new(move |it, c| {
+                    let (p, l) = (it.num_arg(c, &pos)?, it.num_arg(c, &len)?);
+                    let (p, l) = (it.int_arg(p, "ChPos", span)?, it.int_arg(l, "Len", span)?);
+                    match s.with(it, c, |t| part(t, p, l))? {
+                        Ok(v) => Ok(v),
+                        Err(e) => Err(it.rt_error(e, span)),
+                    }
+                }));
+            }
+            Some(Box::new(move |it, c| it.str_part(c, &s, &pos, &len, span)))
+        }
+        "NumToStr" => {
+            let (x, dec) = (arg(0)?, arg(1)?);
+            if args.len() != 3 || !matches!(args[2], Arg::Absent) || !nums(&[x, dec]) {
+                return None;
+            }
+            let (x, dec) = ((num(cx, x), x.span), (num(cx, dec), dec.span));
+            Some(Box::new(move |it, c| it.num_to_str(c, &x, &dec, span)))
+        }
+        _ => {
+            let f = math(cx, n, args, span)?;
+            Some(Box::new(move |it, c| {
+                let x = f(it, c);
+                if x.is_nan() {
+                    return Err(it.take_pending(span));
+                }
+                Ok(Value::Num(x))
+            }))
+        }
+    }
+}
+
+/// `StrPart(text, p, l)` with integer arguments: a slice of ASCII text, else the runtime
+/// library's walk over characters (and its errors).
+fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
+    if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64 {
+        let from = (p - 1) as usize;
+        return Ok(Value::str(&text[from..from + l as usize]));
+    }
+    crate::functions::string::str_part(text, p, l).map(|out| Value::Str(out.into()))
+}
+
+impl Interp {
+    /// An evaluated `num` argument.
+    #[inline(always)]
+    fn num_arg(&mut self, c: &Code, (f, span): &(NumFn, Span)) -> Exec<f32> {
+        let x = f(self, c);
+        if x.is_nan() {
+            return Err(self.take_pending(*span));
+        }
+        Ok(x)
+    }
+
+    /// An integer argument of a native called at `span` (as `Ctx::int`).
+    fn int_arg(&self, x: f32, what: &str, span: Span) -> Exec<i64> {
+        let x = x as f64;
+        if x.fract() != 0.0 || !x.is_finite() {
+            return Err(self.error(
+                errnum::ERR_ARGVALERR,
+                span,
+                format!("{what} must be an integer, not {x}"),
+            ));
+        }
+        Ok(x as i64)
+    }
+
+    fn str_part(
+        &mut self,
+        c: &Code,
+        s: &StrPart,
+        pos: &(NumFn, Span),
+        len: &(NumFn, Span),
+        span: Span,
+    ) -> Exec<Value> {
+        // The text is read before the other arguments are evaluated.
+        let mut text = self.strbufs.pop().unwrap_or_default();
+        text.clear();
+        let r = (|| {
+            s.with(self, c, |t| text.push_str(t))?;
+            let (p, l) = (self.num_arg(c, pos)?, self.num_arg(c, len)?);
+            let (p, l) = (
+                self.int_arg(p, "ChPos", span)?,
+                self.int_arg(l, "Len", span)?,
+            );
+            part(&text, p, l).map_err(|e| self.rt_error(e, span))
+        })();
+        self.strbufs.push(text);
+        r
+    }
+
+    fn num_to_str(
+        &mut self,
+        c: &Code,
+        x: &(NumFn, Span),
+        dec: &(NumFn, Span),
+        span: Span,
+    ) -> Exec<Value> {
+        let (x, d) = (self.num_arg(c, x)?, self.num_arg(c, dec)?);
+        let d = self.int_arg(d, "Dec", span)?.clamp(-1, 99) as i32;
+        if let Some(s) = crate::interp::builtins::int_to_str(x, d) {
+            return Ok(Value::Str(s.into()));
+        }
+        let s = crate::functions::format::num_to_str(x, d, false)
+            .map_err(|e| self.rt_error(e, span))?;
+        let n = s.chars().count();
+        if n > crate::interp::value::MAX_STRING {
+            return Err(self.error(
+                errnum::ERR_STRTOOLNG,
+                span,
+                format!(
+                    "the result would have {n} characters (at most {})",
+                    crate::interp::value::MAX_STRING
+                ),
+            ));
+        }
+        Ok(Value::Str(s.into()))
+    }
+}

@@ -1,0 +1,280 @@
+//! Places in compiled form: the path of a place with its indices compiled, read by
+//! borrowing (a component of a record is read without copying the record) and written in
+//! place. Indices are evaluated first, in order, then the path is walked, with the errors
+//! of [`Interp::load`] and [`Interp::store`].
+
+use super::num::{Opnd, Src, opnd};
+use super::{Code, Cx};
+use crate::interp::Interp;
+use crate::interp::errnum;
+use crate::interp::error::Exec;
+use crate::interp::place::{WalkErr, elem, field, field_mut, oob, same_dims, step_mut};
+use crate::interp::value::{Value, f32_int};
+use crate::ir::{Expr, PathOp, Place, Root};
+use crate::source::Span;
+
+/// Most indices a compiled place evaluates (more fall back to the IR walk).
+const MAX_INDICES: usize = 6;
+
+/// One array index.
+enum CIdx {
+    /// A `num` index, compiled.
+    Num(Opnd, Span),
+    /// An index of another type (evaluated as the tree-walking engine does).
+    Other(Expr),
+}
+
+/// One step of a compiled path: a record component, or an element with this many indices.
+#[derive(Clone, Copy)]
+enum CStep {
+    Field(u16),
+    Elem(u8),
+}
+
+/// A compiled place.
+pub(crate) struct CPlace {
+    root: Root,
+    steps: Box<[CStep]>,
+    idx: Box<[CIdx]>,
+    /// The place as lowered (for the IR walk when there are too many indices).
+    ir: Place,
+}
+
+impl CPlace {
+    pub(crate) fn new(cx: &Cx, pl: &Place) -> CPlace {
+        let mut steps = Vec::new();
+        let mut idx = Vec::new();
+        for op in pl.path.iter() {
+            match op {
+                PathOp::Field(f) => steps.push(CStep::Field(*f)),
+                PathOp::Index(es) => {
+                    steps.push(CStep::Elem(es.len().min(255) as u8));
+                    idx.extend(es.iter().map(|e| match cx.is_num(e) {
+                        true => CIdx::Num(opnd(cx, e), e.span),
+                        false => CIdx::Other(e.clone()),
+                    }));
+                }
+            }
+        }
+        CPlace {
+            root: pl.root,
+            steps: steps.into(),
+            idx: idx.into(),
+            ir: pl.clone(),
+        }
+    }
+
+    /// Evaluate the indices into `buf`.
+    #[inline(always)]
+    fn indices(&self, it: &mut Interp, c: &Code, buf: &mut [i64; MAX_INDICES]) -> Exec<()> {
+        for (k, ix) in self.idx.iter().enumerate() {
+            let i = match ix {
+                CIdx::Num(o, span) => {
+                    let x = o.get(it, c);
+                    match f32_int(x) {
+                        Some(i) => i as i64,
+                        None => it.index_of(x, *span)?,
+                    }
+                }
+                CIdx::Other(e) => it.eval_index(&c.prog, e)?,
+            };
+            if let Some(b) = buf.get_mut(k) {
+                *b = i;
+            }
+        }
+        Ok(())
+    }
+
+    /// The value at the place, borrowed.
+    #[inline(always)]
+    fn walk<'a>(&self, it: &'a Interp, idx: &[i64]) -> Result<&'a Value, WalkErr> {
+        let mut v = match self.root {
+            Root::Local(s) => it.stack.get(it.bp + s as usize).ok_or(WalkErr::Shape)?,
+            Root::Global(g) => it.globals.get(g as usize).ok_or(WalkErr::Shape)?,
+            Root::Ref(k) => {
+                let r = it.refs.get(it.rbp + k as usize).ok_or(WalkErr::Shape)?;
+                it.abs_get(r)?
+            }
+        };
+        let mut ii = 0;
+        for s in self.steps.iter() {
+            match *s {
+                CStep::Field(f) => v = field(v, f)?,
+                CStep::Elem(n) => {
+                    let n = n as usize;
+                    v = elem(v, idx.get(ii..ii + n).ok_or(WalkErr::Shape)?)?;
+                    ii += n;
+                }
+            }
+        }
+        if let Value::Absent = v {
+            return Err(WalkErr::NotPresent);
+        }
+        Ok(v)
+    }
+
+    /// Read a `num` (NaN: an error is pending); `span` is the expression's.
+    #[inline]
+    pub(crate) fn num(&self, it: &mut Interp, c: &Code, span: Span) -> f32 {
+        if self.idx.is_empty()
+            && let Ok(Value::Num(x)) = self.walk(it, &[])
+        {
+            // Components only (`q.x`, `p.trans.z`): nothing to evaluate first.
+            return *x;
+        }
+        if self.idx.len() > MAX_INDICES {
+            return it.nf_cold(c, &self.load_expr(span));
+        }
+        let mut buf = [0i64; MAX_INDICES];
+        if let Err(u) = self.indices(it, c, &mut buf) {
+            return it.fail_nf(u);
+        }
+        match self.walk(it, &buf[..self.idx.len()]) {
+            Ok(Value::Num(x)) => *x,
+            Ok(other) => {
+                let v = other.clone();
+                it.nf_of(Ok(v), span)
+            }
+            Err(e) => {
+                let u = it.walk_err(e, self.ir.span);
+                it.fail_nf(u)
+            }
+        }
+    }
+
+    /// Call `f` with the value, borrowed.
+    #[inline]
+    pub(crate) fn read<R>(
+        &self,
+        it: &mut Interp,
+        c: &Code,
+        f: impl FnOnce(&Value) -> R,
+    ) -> Exec<R> {
+        if self.idx.len() > MAX_INDICES {
+            let v = it.load(&c.prog, &self.ir)?;
+            return Ok(f(&v));
+        }
+        let mut buf = [0i64; MAX_INDICES];
+        self.indices(it, c, &mut buf)?;
+        match self.walk(it, &buf[..self.idx.len()]) {
+            Ok(v) => Ok(f(v)),
+            Err(e) => Err(it.walk_err(e, self.ir.span)),
+        }
+    }
+
+    /// Read the value (a copy).
+    pub(crate) fn load(&self, it: &mut Interp, c: &Code) -> Exec<Value> {
+        if self.idx.len() > MAX_INDICES {
+            return it.load(&c.prog, &self.ir);
+        }
+        let mut buf = [0i64; MAX_INDICES];
+        self.indices(it, c, &mut buf)?;
+        match self.walk(it, &buf[..self.idx.len()]) {
+            Ok(v) => Ok(v.clone()),
+            Err(e) => Err(it.walk_err(e, self.ir.span)),
+        }
+    }
+
+    /// Write `v` (an array only over an array of the same sizes).
+    pub(crate) fn store(&self, it: &mut Interp, c: &Code, v: Value) -> Exec<()> {
+        if self.idx.len() > MAX_INDICES {
+            return it.store(&c.prog, &self.ir, v);
+        }
+        let mut buf = [0i64; MAX_INDICES];
+        self.indices(it, c, &mut buf)?;
+        let idx = &buf[..self.idx.len()];
+        let (bp, rbp) = (it.bp, it.rbp);
+        let Interp {
+            stack,
+            globals,
+            refs,
+            ..
+        } = &mut *it;
+        let r = (|| {
+            let mut cur: &mut Value = match self.root {
+                Root::Local(s) => stack.get_mut(bp + s as usize).ok_or(WalkErr::Shape)?,
+                Root::Global(g) => globals.get_mut(g as usize).ok_or(WalkErr::Shape)?,
+                Root::Ref(k) => {
+                    let r = refs.get(rbp + k as usize).ok_or(WalkErr::Shape)?;
+                    let mut c = match r.root {
+                        crate::interp::place::AbsRoot::Stack(i) => {
+                            stack.get_mut(i as usize).ok_or(WalkErr::Shape)?
+                        }
+                        crate::interp::place::AbsRoot::Global(g) => {
+                            globals.get_mut(g as usize).ok_or(WalkErr::Shape)?
+                        }
+                        crate::interp::place::AbsRoot::Absent => {
+                            return Err(WalkErr::NotPresent);
+                        }
+                    };
+                    for &s in &r.path {
+                        c = step_mut(c, s)?;
+                    }
+                    c
+                }
+            };
+            let mut ii = 0;
+            for s in self.steps.iter() {
+                match *s {
+                    CStep::Field(f) => cur = field_mut(cur, f)?,
+                    CStep::Elem(n) => {
+                        let n = n as usize;
+                        let ix = idx.get(ii..ii + n).ok_or(WalkErr::Shape)?;
+                        cur = match cur {
+                            Value::Array(a) => match a.offset(ix) {
+                                Some(o) => a.data.get_mut(o).ok_or(WalkErr::Shape)?,
+                                None => return Err(oob(a, ix)),
+                            },
+                            Value::Absent => return Err(WalkErr::NotPresent),
+                            _ => return Err(WalkErr::Shape),
+                        };
+                        ii += n;
+                    }
+                }
+            }
+            if !same_dims(cur, &v) {
+                return Ok(false);
+            }
+            match (cur, v) {
+                (Value::Num(old), Value::Num(x)) => *old = x,
+                (cur, v) => *cur = v,
+            }
+            Ok(true)
+        })();
+        match r {
+            Ok(true) => Ok(()),
+            Ok(false) => Err(it.dims_error(self.ir.span)),
+            Err(e) => Err(it.walk_err(e, self.ir.span)),
+        }
+    }
+
+    /// The place as an expression (for the IR walk).
+    fn load_expr(&self, span: Span) -> Expr {
+        Expr {
+            kind: crate::ir::ExprKind::Load(Box::new(self.ir.clone())),
+            span,
+        }
+    }
+}
+
+impl Interp {
+    /// An index that is not an `i32` integer: the integer it is, or `ERR_NOTINTVAL` (as the
+    /// tree-walking engine's index evaluation).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn index_of(&mut self, x: f32, span: Span) -> Exec<i64> {
+        if x.is_nan() {
+            return Err(self.take_pending(span));
+        }
+        let x = x as f64;
+        let i = x as i64;
+        if i as f64 != x {
+            return Err(self.error(
+                errnum::ERR_NOTINTVAL,
+                span,
+                format!("array index {x} is not an integer"),
+            ));
+        }
+        Ok(i)
+    }
+}

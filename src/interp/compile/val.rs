@@ -1,0 +1,334 @@
+//! Values of any type in compiled form: `num` expressions through their compiled form,
+//! string concatenation written into one buffer (the operands read in place, one
+//! allocation for the result), places read through their compiled path; anything else on
+//! the tree-walking engine's evaluator. Also the statements that store a value
+//! (`place := value`) and string comparisons that read their operands in place.
+
+use std::sync::Arc;
+
+use super::num::num;
+use super::place::CPlace;
+use super::{Code, Cx, StmtFn};
+use crate::interp::Interp;
+use crate::interp::errnum;
+use crate::interp::error::{Exec, Unwind};
+use crate::interp::place::same_dims;
+use crate::interp::value::{MAX_STRING, Value};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Root, Ty};
+use crate::source::Span;
+
+/// A compiled expression of any type.
+pub(crate) type ValFn = Box<dyn Fn(&mut Interp, &Code) -> Exec<Value> + Send + Sync>;
+
+/// Compile an expression to a value.
+pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
+    let span = e.span;
+    match &e.kind {
+        ExprKind::Str(s) => {
+            let s = s.clone();
+            Box::new(move |_, _| Ok(Value::Str(s.clone())))
+        }
+        ExprKind::Binary(BinOp::Concat, ..) => {
+            let parts = concat_parts(cx, e);
+            Box::new(move |it, c| it.concat(c, &parts))
+        }
+        ExprKind::Load(pl) => {
+            let p = CPlace::new(cx, pl);
+            Box::new(move |it, c| p.load(it, c))
+        }
+        ExprKind::Local(slot) if !cx.is_num(e) => {
+            let slot = *slot as usize;
+            Box::new(move |it, _| match it.stack.get(it.bp + slot) {
+                Some(Value::Absent) | None => Err(it.error(
+                    errnum::ERR_NOTPRES,
+                    span,
+                    "the optional parameter was not passed",
+                )),
+                Some(v) => Ok(v.clone()),
+            })
+        }
+        ExprKind::Global(g) if !cx.is_num(e) => {
+            let g = *g as usize;
+            Box::new(move |it, _| Ok(it.globals.get(g).cloned().unwrap_or(Value::Absent)))
+        }
+        ExprKind::Native(n, args) => match super::natives::value(cx, *n, args, span) {
+            Some(f) => f,
+            None => {
+                let call = super::call::CNative::new(cx, *n, args, span);
+                Box::new(move |it, c| it.cnative(c, &call))
+            }
+        },
+        ExprKind::Record(es) => {
+            let es: Box<[ValFn]> = es.iter().map(|e| value(cx, e)).collect();
+            Box::new(move |it, c| {
+                let mut out = Vec::with_capacity(es.len());
+                for f in es.iter() {
+                    out.push(f(it, c)?);
+                }
+                Ok(Value::Record(out.into_boxed_slice()))
+            })
+        }
+        ExprKind::Field(base, i) => {
+            let (b, i) = (value(cx, base), *i as usize);
+            Box::new(move |it, c| match b(it, c)? {
+                Value::Record(mut fs) if i < fs.len() => {
+                    Ok(std::mem::replace(&mut fs[i], Value::Absent))
+                }
+                other => Err(it.type_bug(span, "record", &other)),
+            })
+        }
+        ExprKind::Call(r, args) if !cx.is_num(e) => {
+            let call = super::CCall::new(cx, *r, args, span);
+            Box::new(move |it, c| it.ccall(c, &call))
+        }
+        _ if cx.is_num(e) => {
+            let f = num(cx, e);
+            Box::new(move |it, c| {
+                let x = f(it, c);
+                if x.is_nan() {
+                    Err(it.take_pending(span))
+                } else {
+                    Ok(Value::Num(x))
+                }
+            })
+        }
+        _ => {
+            let e = e.clone();
+            Box::new(move |it, c| it.eval(&c.prog, &e))
+        }
+    }
+}
+
+/// A string operand, read in place where it can be.
+pub(crate) enum StrPart {
+    /// A constant.
+    Lit(Arc<str>),
+    /// A local slot (an absent optional parameter fails).
+    Local(u32, Span),
+    /// A global.
+    Global(u32, Span),
+    /// Any other place.
+    Place(CPlace, Span),
+    /// A computed string.
+    Dyn(ValFn, Span),
+}
+
+impl StrPart {
+    pub(crate) fn new(cx: &Cx, e: &Expr) -> StrPart {
+        match &e.kind {
+            ExprKind::Str(s) => StrPart::Lit(s.clone()),
+            ExprKind::Local(s) => StrPart::Local(*s, e.span),
+            ExprKind::Global(g) => StrPart::Global(*g, e.span),
+            ExprKind::Load(pl) => StrPart::Place(CPlace::new(cx, pl), e.span),
+            _ => StrPart::Dyn(value(cx, e), e.span),
+        }
+    }
+
+    /// Call `f` with the text (a computed part is evaluated first).
+    #[inline(always)]
+    pub(crate) fn with<R>(&self, it: &mut Interp, c: &Code, f: impl FnOnce(&str) -> R) -> Exec<R> {
+        let bad = |it: &Interp, v: &Value, span: Span| it.type_bug(span, "string", v);
+        match self {
+            StrPart::Lit(s) => Ok(f(s)),
+            StrPart::Local(s, span) => match it.stack.get(it.bp + *s as usize) {
+                Some(Value::Str(t)) => Ok(f(t)),
+                Some(Value::Absent) | None => Err(it.error(
+                    errnum::ERR_NOTPRES,
+                    *span,
+                    "the optional parameter was not passed",
+                )),
+                Some(v) => Err(bad(it, v, *span)),
+            },
+            StrPart::Global(g, span) => match it.globals.get(*g as usize) {
+                Some(Value::Str(t)) => Ok(f(t)),
+                Some(v) => Err(bad(it, v, *span)),
+                None => Err(bad(it, &Value::Absent, *span)),
+            },
+            StrPart::Place(p, span) => {
+                let span = *span;
+                match p.read(it, c, |v| match v {
+                    Value::Str(t) => Ok(f(t)),
+                    v => Err(v.clone()),
+                })? {
+                    Ok(r) => Ok(r),
+                    Err(v) => Err(bad(it, &v, span)),
+                }
+            }
+            StrPart::Dyn(g, span) => match g(it, c)? {
+                Value::Str(t) => Ok(f(&t)),
+                v => Err(bad(it, &v, *span)),
+            },
+        }
+    }
+}
+
+/// The operands of `a + b + c …` (the left spine of string `+`), each with the span of the
+/// `+` it completes (none for the first).
+pub(crate) type Parts = Box<[(StrPart, Span)]>;
+
+fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
+    let mut spine = Vec::new();
+    let mut cur = e;
+    while let ExprKind::Binary(BinOp::Concat, a, b) = &cur.kind {
+        spine.push((b.as_ref(), cur.span));
+        cur = a;
+    }
+    let mut parts = vec![(StrPart::new(cx, cur), cur.span)];
+    parts.extend(
+        spine
+            .into_iter()
+            .rev()
+            .map(|(b, span)| (StrPart::new(cx, b), span)),
+    );
+    parts.into()
+}
+
+impl Interp {
+    /// `a + b + …` for strings: each operand appended in order, the length checked after
+    /// each `+` as the tree-walking engine checks it.
+    fn concat(&mut self, c: &Code, parts: &Parts) -> Exec<Value> {
+        let mut buf = self.strbufs.pop().unwrap_or_default();
+        buf.clear();
+        let r = self.concat_into(c, parts, &mut buf);
+        let v = r.map(|()| Value::Str(Arc::from(buf.as_str())));
+        self.strbufs.push(buf);
+        v
+    }
+
+    fn concat_into(&mut self, c: &Code, parts: &Parts, buf: &mut String) -> Exec<()> {
+        for (k, (part, span)) in parts.iter().enumerate() {
+            part.with(self, c, |s| buf.push_str(s))?;
+            // More than MAX_STRING bytes may still be few enough characters.
+            if k > 0 && buf.len() > MAX_STRING {
+                let n = buf.chars().count();
+                if n > MAX_STRING {
+                    return Err(self.error(
+                        errnum::ERR_STRTOOLNG,
+                        *span,
+                        format!("the result would have {n} characters (at most {MAX_STRING})"),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// String `=` / `<>` (`eq` true for `=`) with the operands read in place (the left one
+/// copied into a scratch buffer first, so that evaluating the right one cannot change it);
+/// `None` when the operands are not known to be strings.
+pub(crate) fn str_eq(cx: &Cx, a: &Expr, b: &Expr, eq: bool) -> Option<super::BoolFn> {
+    if cx.expr_ty(a) != Some(Ty::STRING) || cx.expr_ty(b) != Some(Ty::STRING) {
+        return None;
+    }
+    let (a, b) = (StrPart::new(cx, a), StrPart::new(cx, b));
+    Some(Box::new(move |it, c| {
+        let mut tmp = it.strbufs.pop().unwrap_or_default();
+        tmp.clear();
+        let r = a
+            .with(it, c, |s| tmp.push_str(s))
+            .and_then(|()| b.with(it, c, |t| tmp.as_str() == t));
+        it.strbufs.push(tmp);
+        Ok(r? == eq)
+    }))
+}
+
+/// Where `place := value` stores.
+pub(crate) enum VSink {
+    Local(u32, Place),
+    Global(u32, Place),
+    Place(CPlace),
+}
+
+impl VSink {
+    pub(crate) fn of(cx: &Cx, place: &Place) -> VSink {
+        match (place.root, place.path.is_empty()) {
+            (Root::Local(s), true) => VSink::Local(s, place.clone()),
+            (Root::Global(g), true) => VSink::Global(g, place.clone()),
+            _ => VSink::Place(CPlace::new(cx, place)),
+        }
+    }
+
+    /// Store `v` (as [`Interp::store`]: an array only over one of the same sizes).
+    #[inline(always)]
+    pub(crate) fn put(&self, it: &mut Interp, c: &Code, v: Value) -> Exec<()> {
+        let (slot, pl) = match self {
+            VSink::Local(s, pl) => (it.stack.get_mut(it.bp + *s as usize), pl),
+            VSink::Global(g, pl) => (it.globals.get_mut(*g as usize), pl),
+            VSink::Place(p) => return p.store(it, c, v),
+        };
+        match slot {
+            Some(slot) if same_dims(slot, &v) => {
+                *slot = v;
+                Ok(())
+            }
+            Some(_) => Err(it.dims_error(pl.span)),
+            None => it.store(&c.prog, pl, v),
+        }
+    }
+}
+
+/// `place := value` for values of any type. Data copied from a local or global into
+/// another whole local or global goes into what the target holds (no allocation when the
+/// shapes agree).
+pub(crate) fn assign(cx: &Cx, place: &Place, value: &Expr) -> StmtFn {
+    // The source is read after the target was taken out of its slot: it must not evaluate
+    // anything (no array index) that could read the target.
+    let root = |e: &Expr| match &e.kind {
+        ExprKind::Local(s) => Some(Root::Local(*s)),
+        ExprKind::Global(g) => Some(Root::Global(*g)),
+        ExprKind::Load(pl) if pl.path.iter().all(|op| matches!(op, PathOp::Field(_))) => {
+            Some(pl.root)
+        }
+        _ => None,
+    };
+    if place.path.is_empty()
+        && !cx.is_num(value)
+        && !matches!(place.root, Root::Ref(_))
+        && let Some(src_root) = root(value)
+        && src_root != place.root
+        && !matches!(src_root, Root::Ref(_))
+        && let Some(src) = super::call::Copied::of(cx, value)
+    {
+        let (root, span) = (place.root, place.span);
+        return Box::new(move |it, c| {
+            let slot = match root {
+                Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+                Root::Global(g) => it.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            let Some(slot) = slot else {
+                return Err(it.type_bug(span, "data", &Value::Absent));
+            };
+            let mut dst = std::mem::replace(slot, Value::Absent);
+            let r = src.copy_into(it, c, &mut dst, same_dims);
+            let slot = match root {
+                Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+                Root::Global(g) => it.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            if let Some(slot) = slot {
+                *slot = dst;
+            }
+            match r? {
+                true => Ok(()),
+                false => Err(it.dims_error(span)),
+            }
+        });
+    }
+    let v = self::value(cx, value);
+    let sink = VSink::of(cx, place);
+    Box::new(move |it, c| {
+        let x = v(it, c)?;
+        sink.put(it, c, x)
+    })
+}
+
+/// `RETURN value` in a FUNC.
+pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
+    let v = self::value(cx, value);
+    Box::new(move |it, c| {
+        it.ret = v(it, c)?;
+        Err(Unwind::Return)
+    })
+}
