@@ -105,14 +105,15 @@ errs! {
     ERR_FILNOTFND = 1605, "File not found";
     ERR_FILESIZE = 1606, "File too large";
     ERR_RANYBIN_EOF = 1607, "End of file";
-    ERR_SOCK_ADDR_INVALID = 1608, "Socket address not valid (not an IPv4 address of a reachable host)";
-    ERR_SOCK_ADDR_INUSE = 1609, "Socket address and port already in use";
-    ERR_SOCK_IS_BOUND = 1610, "Socket already bound";
-    ERR_SOCK_IS_CONN = 1611, "Socket already connected";
-    ERR_SOCK_NET_UNREACH = 1612, "Network or host unreachable";
-    ERR_SOCK_NOT_BOUND = 1613, "Socket not bound (or not listening)";
-    ERR_SOCK_NOT_CONN = 1614, "Socket not connected";
-    ERR_SOCK_UNSPEC = 1615, "Socket error";
+    // The socket errors beyond the first two take 1650 on (1603-1649: files).
+    ERR_SOCK_ADDR_INVALID = 1650, "Socket address not valid (not an IPv4 address of a reachable host)";
+    ERR_SOCK_ADDR_INUSE = 1651, "Socket address and port already in use";
+    ERR_SOCK_IS_BOUND = 1652, "Socket already bound";
+    ERR_SOCK_IS_CONN = 1653, "Socket already connected";
+    ERR_SOCK_NET_UNREACH = 1654, "Network or host unreachable";
+    ERR_SOCK_NOT_BOUND = 1655, "Socket not bound (or not listening)";
+    ERR_SOCK_NOT_CONN = 1656, "Socket not connected";
+    ERR_SOCK_UNSPEC = 1657, "Socket error";
     ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
 }
 
