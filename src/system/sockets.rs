@@ -489,8 +489,17 @@ impl Sockets {
                         format!("the socket is bound to {b} already"),
                     ));
                 }
-                sock.bind(&addr.into())
-                    .map_err(|err| SocketError::os(&format!("SocketBind to {addr}"), &err))?;
+                sock.bind(&addr.into()).map_err(|err| {
+                    let mut e = SocketError::os(&format!("SocketBind to {addr}"), &err);
+                    if e.kind == SocketErrorKind::AddrInvalid {
+                        // Programs written for a controller bind its LAN address.
+                        e.message.push_str(
+                            "; rapidvc runs on this computer: bind one of its addresses, \
+                             such as \"127.0.0.1\" or \"0.0.0.0\" (every interface)",
+                        );
+                    }
+                    e
+                })?;
                 let local = sock.local_addr().ok().and_then(|a| a.as_socket());
                 *bound = Some(local.map_or(addr, v4));
                 Ok(())
@@ -1075,6 +1084,14 @@ mod tests {
             s.receive_from(u, 10, Duration::ZERO).unwrap_err().kind,
             SocketErrorKind::NotBound
         );
+        // An address of another machine (the controller's default LAN address).
+        let far = s.create(Transport::Tcp).unwrap();
+        let err = s
+            .bind(far, SocketAddrV4::new(Ipv4Addr::new(192, 0, 2, 1), 0))
+            .unwrap_err();
+        assert_eq!(err.kind, SocketErrorKind::AddrInvalid, "{err}");
+        assert!(err.message.contains("127.0.0.1"), "{err}");
+        assert_eq!(s.status(far), SocketStatus::Created);
         assert_eq!(
             parse_address("localhost").unwrap_err().kind,
             SocketErrorKind::AddrInvalid
