@@ -2,7 +2,8 @@
 //! server.mod`) served to a client written with Python's plain `socket` module, and a RAPID
 //! client (`tests/sockets/client.mod`) of a Python server that checks the bytes
 //! `PackRawBytes` made with `struct`. Both run `rapidvc run` in real time (a program with
-//! sockets switches the clock) on 127.0.0.1; every process is bounded by a time-out.
+//! sockets switches the clock) on 127.0.0.1; every process is bounded by a time-out. Plus
+//! what a socket wait must allow: a timer trap runs during it, and Ctrl-C ends it.
 //!
 //! The Python is `python3` from `PATH` (the standard library only), or `RAPIDVC_SYSTEM_PYTHON`.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
@@ -160,5 +161,49 @@ fn a_refused_connect_is_an_error_at_the_instruction() {
         client.stderr
     );
     assert!(client.stderr.contains("client.mod:"), "{}", client.stderr);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Traps run while a socket instruction waits, and `\Time` ends the wait on the wall clock.
+#[test]
+fn a_timer_trap_runs_while_a_socket_waits() {
+    let ended = procs::run_program("tests/sockets/trap_wait.mod", &[], LIMIT);
+    assert_eq!(ended.code, Some(0), "{}\n{}", ended.stdout, ended.stderr);
+    assert_eq!(
+        ended.stdout,
+        "time-out after about 1 s: TRUE\nthe timer fired during the wait: TRUE\n"
+    );
+}
+
+/// Ctrl-C stops a program that waits in `SocketAccept` (the server waits up to 30 s for a
+/// client that never comes): it ends at once with the usual exit code 130.
+#[test]
+fn ctrl_c_ends_a_socket_wait() {
+    let dir = temp_dir("ctrlc");
+    let pers = dir.join("server.pers");
+    std::fs::write(&pers, format!("PERS num server_port := {};\n", free_port())).unwrap();
+    let mut server = Proc::spawn(rapidvc_run(
+        "tests/sockets/server.mod",
+        &["--pers".into(), pers.display().to_string()],
+    ));
+    assert_eq!(server.next_line(LIMIT).as_deref(), Some("listening"));
+    let start = std::time::Instant::now();
+    let status = Command::new("kill")
+        .args(["-INT", &server.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let ended = server.wait(LIMIT);
+    assert_eq!(ended.code, Some(130), "{}\n{}", ended.stdout, ended.stderr);
+    assert!(
+        start.elapsed() < Duration::from_secs(10),
+        "Ctrl-C took {:?}",
+        start.elapsed()
+    );
+    assert!(
+        ended.stderr.contains("interrupted by Ctrl-C"),
+        "{}",
+        ended.stderr
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
