@@ -29,6 +29,7 @@ pub mod parse;
 pub mod program;
 pub mod robot;
 pub mod sema;
+pub mod services;
 pub mod signals;
 pub mod source;
 pub mod system;
