@@ -20,6 +20,7 @@ pub mod config;
 pub mod controller;
 pub mod diag;
 pub mod egm;
+pub mod events;
 pub mod functions;
 pub mod interp;
 pub mod ir;
