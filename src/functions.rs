@@ -15,6 +15,7 @@ pub mod digits;
 pub mod format;
 pub mod math;
 pub mod pose;
+pub mod raw_bytes;
 pub mod string;
 
 /// An error raised by a runtime-library function.
@@ -183,6 +184,7 @@ mod tests {
             include_str!("../stdlib/misc.sys"),
             include_str!("../stdlib/system.sys"),
             include_str!("../stdlib/files.sys"),
+            include_str!("../stdlib/socket.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -322,5 +324,42 @@ mod tests {
         assert_eq!(find("diskram").as_str(), Some("RAMDISK:"));
         assert_eq!(find("EOF_NUM").as_num(), Some(9.998e36));
         assert_eq!(find("EOF_BIN").as_num(), Some(-1.0));
+        let wait_max = misc.iter().find(|d| d.2 == "WAIT_MAX").unwrap();
+        assert_eq!(wait_max.3.as_dnum(), Some(8_388_607.0));
+
+        // The socket states and integer formats: `interp/builtins/sockets.rs` and
+        // `raw_bytes` use these numbers.
+        let socket = decls(files[7]);
+        let value = |n: &str| {
+            socket
+                .iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap()
+        };
+        for (i, name) in [
+            "SOCKET_CREATED",
+            "SOCKET_CONNECTED",
+            "SOCKET_BOUND",
+            "SOCKET_LISTENING",
+            "SOCKET_CLOSED",
+        ]
+        .iter()
+        .enumerate()
+        {
+            assert_eq!(value(name), i as f64 + 1.0, "{name}");
+        }
+        for (name, n) in [
+            ("USINT", 1.0),
+            ("UINT", 2.0),
+            ("UDINT", 4.0),
+            ("ULINT", 8.0),
+            ("SINT", -1.0),
+            ("INT", -2.0),
+            ("DINT", -4.0),
+            ("LINT", -8.0),
+        ] {
+            assert_eq!(value(name), n, "{name}");
+        }
     }
 }

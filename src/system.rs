@@ -12,10 +12,11 @@
 pub mod calendar;
 pub mod cfg_data;
 pub mod info;
+pub mod sockets;
 pub mod text_tables;
 
 /// The controller's system side of one program run.
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub struct Services {
     /// The calendar: controller date and time from robot time.
     pub calendar: calendar::Calendar,
@@ -25,4 +26,20 @@ pub struct Services {
     pub cfg: cfg_data::CfgData,
     /// The installed text tables.
     pub texts: text_tables::TextTables,
+    /// The task's sockets (`SocketCreate` … `SocketClose`).
+    pub sockets: sockets::Sockets,
+}
+
+/// A copy of the system side for another run (`rapidvc test` runs each test on one): the
+/// same calendar, identity, configuration and texts, and no open sockets.
+impl Clone for Services {
+    fn clone(&self) -> Self {
+        Services {
+            calendar: self.calendar.clone(),
+            info: self.info.clone(),
+            cfg: self.cfg.clone(),
+            texts: self.texts.clone(),
+            sockets: sockets::Sockets::default(),
+        }
+    }
 }

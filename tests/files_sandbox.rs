@@ -5,9 +5,9 @@
 //! be exactly as it was: no file read (its access is not checked, its content is not shown),
 //! none written, created, renamed or removed.
 
+use rapidvc_testkit::rapidvc;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn tmp(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("rapidvc-sandbox-{name}-{}", std::process::id()));
@@ -112,7 +112,7 @@ fn no_path_leaves_home() {
     let prog = prog_dir.join("attack.mod");
     std::fs::write(&prog, program(&outside)).unwrap();
 
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("run")
         .arg("--home")
         .arg(&home)
@@ -184,7 +184,7 @@ fn home_must_be_an_existing_directory() {
     let prog = root.join("p.mod");
     std::fs::write(&prog, "MODULE p\n  PROC main()\n  ENDPROC\nENDMODULE\n").unwrap();
     for bad in [root.join("missing"), prog.clone()] {
-        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        let out = rapidvc!()
             .arg("run")
             .arg("--home")
             .arg(&bad)
@@ -209,7 +209,7 @@ fn default_home_is_fresh_and_printed() {
         "MODULE p\n  VAR iodev f;\n  PROC main()\n    Open diskhome \\File:=\"a.txt\", f \\Write;\n    Write f, \"hi\";\n    Close f;\n  ENDPROC\nENDMODULE\n",
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("run")
         .arg(&prog)
         .current_dir(&root)

@@ -2,8 +2,8 @@
 //! CFG file that rapidvc reads back, only where `--save-cfg` allows and never over the files
 //! the run read; `--date now` starts the calendar at the host's local time.
 
+use rapidvc_testkit::rapidvc;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const EIO: &str = "EIO:CFG_1.0:6:1::\n#\nEIO_SIGNAL:\n\n      -Name \"doGripper\" -SignalType \"DO\" -Device \"USERIO\" -DeviceMap \"0\"\n\n      -Name \"diPart\" -SignalType \"DI\" -Device \"USERIO\" -DeviceMap \"1\" -Invert\n";
 
@@ -16,7 +16,7 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn run(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("run")
         .args(args)
         .current_dir(dir)

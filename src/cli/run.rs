@@ -19,6 +19,7 @@ use super::{answers, interrupt, num, progress_line, render};
 use crate::program;
 
 pub mod egm_options;
+pub mod socket_clock;
 pub mod view_options;
 use crate::controller::egm_controller::EgmController;
 use crate::controller::{
@@ -194,6 +195,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
+    let uses_sockets = socket_clock::uses_sockets(&prog);
     let view = match start_view(&args, &prog, &sources) {
         Ok(v) => v,
         Err(msg) => {
@@ -207,6 +209,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         &loaded.config,
         &signals,
         uses_egm.then_some(&prepared.devices),
+        uses_sockets,
         view.as_ref(),
     );
     let (ctl, egm_controller, egm_log_written, outside_inputs) = match started {
@@ -343,6 +346,7 @@ fn system_services(args: &RunArgs, loaded: &program::Loaded) -> crate::system::S
         info: crate::system::info::SystemInfo::default().with_robot(args.robot.0),
         cfg,
         texts: Default::default(),
+        sockets: Default::default(),
     }
 }
 
@@ -523,13 +527,16 @@ fn start_view(
 /// and its EGM side (devices, clock choice, output feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
 /// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
-/// program sets up, `None` when it uses no EGM.
+/// program sets up, `None` when it uses no EGM; `uses_sockets`: the program has sockets, so
+/// real processes take part (real time unless `--lockstep`).
+#[allow(clippy::too_many_arguments)]
 fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
     signals: &Arc<crate::signals::SignalTable>,
     egm_devices: Option<&egm_options::DeviceUse>,
+    uses_sockets: bool,
     view: Option<&view_options::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
     let uses_egm = egm_devices.is_some();
@@ -597,14 +604,26 @@ fn start_controller(
     )?;
     let log_written = prepared.log_written;
     let outside_inputs = args.egm.lockstep && !prepared.external.is_empty();
-    let realtime =
-        args.realtime || args.view.needs_realtime() || (uses_egm && prepared.needs_realtime);
-    if uses_egm && prepared.needs_realtime && !args.realtime && !args.view.needs_realtime() {
+    let egm_realtime = uses_egm && prepared.needs_realtime;
+    let realtime = args.realtime
+        || args.view.needs_realtime()
+        || egm_realtime
+        || (uses_sockets && !args.egm.lockstep);
+    if egm_realtime && !args.realtime && !args.view.needs_realtime() {
         progress_line::clear();
         eprintln!(
             "note: EGM device {} is an external sensor: the clock runs in real time (--lockstep keeps virtual time)",
             prepared.external.join(", ")
         );
+    }
+    if uses_sockets
+        && let Some(note) = socket_clock::note(
+            args.realtime || args.view.needs_realtime() || egm_realtime,
+            args.egm.lockstep,
+        )
+    {
+        progress_line::clear();
+        eprintln!("{note}");
     }
     let hook: Option<Box<dyn CycleHook>> = Some(Box::new(prepared.hook));
     let egm_controller = prepared.controller;

@@ -17,6 +17,8 @@ mod math;
 mod modules;
 mod motion;
 mod pose;
+mod rawbytes;
+mod sockets;
 mod string;
 mod system;
 mod text;
@@ -97,6 +99,8 @@ impl Registry {
         egm_path::register(&mut r);
         files::register(&mut r);
         modules::register(&mut r);
+        rawbytes::register(&mut r);
+        sockets::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

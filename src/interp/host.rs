@@ -27,6 +27,13 @@
 //! `ERR_OUTSIDE_REACH`) and a message that starts with the ABB event number and title, so
 //! `ERROR` handlers can take them and unhandled ones point at the instruction.
 //!
+//! # The system side
+//!
+//! [`Host::system`] gives the controller's operating-system services ([`Services`]: the
+//! task's sockets), plain Rust types of `crate::system` that the natives in
+//! `interp/builtins/sockets.rs` drive. [`VirtualHost`] owns one, and the controller's host
+//! hands out that of its `VirtualHost`.
+//!
 //! # EGM
 //!
 //! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM

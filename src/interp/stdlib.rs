@@ -14,5 +14,9 @@ pub const SOURCES: &[(&str, &str)] = &[
         include_str!("../../stdlib/system.sys"),
     ),
     ("<stdlib>/files.sys", include_str!("../../stdlib/files.sys")),
+    (
+        "<stdlib>/socket.sys",
+        include_str!("../../stdlib/socket.sys"),
+    ),
     ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];

@@ -116,6 +116,15 @@ errs! {
     ERR_FILEEXIST = 1608, "File already exists";
     ERR_RANYBIN_CHK = 1609, "Check sum error in binary data";
     ERR_RCVDATA = 1610, "Data read is not a number";
+    // The socket errors beyond the first two take 1650 on (1603-1649: files).
+    ERR_SOCK_ADDR_INVALID = 1650, "Socket address not valid (not an IPv4 address of a reachable host)";
+    ERR_SOCK_ADDR_INUSE = 1651, "Socket address and port already in use";
+    ERR_SOCK_IS_BOUND = 1652, "Socket already bound";
+    ERR_SOCK_IS_CONN = 1653, "Socket already connected";
+    ERR_SOCK_NET_UNREACH = 1654, "Network or host unreachable";
+    ERR_SOCK_NOT_BOUND = 1655, "Socket not bound (or not listening)";
+    ERR_SOCK_NOT_CONN = 1656, "Socket not connected";
+    ERR_SOCK_UNSPEC = 1657, "Socket error";
     ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
     ERR_CFG_NOTFND = 1801, "Configuration data not found";
     ERR_CFG_ILLTYPE = 1802, "Configuration data of another type";

@@ -124,6 +124,9 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("signalgi", &[("name", "string")]),
     ("signalgo", &[("name", "string")]),
     ("socketdev", &[("id", "num")]),
+    // Up to 1024 bytes and the count of valid ones; the bytes are kept as the characters
+    // U+0000–U+00FF of a string (`functions::raw_bytes`).
+    ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
     ("dir", &[("id", "num")]),
     (
@@ -142,7 +145,7 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ),
 ];
 
-/// Aliases of `num` known to the kernel and the EGM option.
+/// Aliases of `num` known to the kernel, sockets and the EGM option.
 const NUM_ALIASES: &[&str] = &[
     "errnum",
     "intnum",
@@ -160,6 +163,8 @@ const NUM_ALIASES: &[&str] = &[
     "egmstopmode",
     "egmframetype",
     "egmcorrstate",
+    "socketstatus",
+    "inttypes",
 ];
 
 /// `aiotrigg` constants (ISignalAO conditions).
