@@ -5,7 +5,7 @@
 //! * `valid`: with an `EIO.cfg` for its one signal. Its only diagnostics are the task data
 //!   limit (a 50 MB module of robtargets holds more than a task may: see "Data limits" in the
 //!   README).
-//! * `errors`: the same program with every `cycle` in `TPWrite` misspelt `cycel` (about 55,000
+//! * `errors`: the same program with every `cycle` in `TPWrite` misspelt `cycel` (about 22,000
 //!   undeclared names, each with a "did you mean" suggestion) and no `EIO.cfg` (every
 //!   `SetDO doGripper` names an unknown signal).
 //!
