@@ -17,6 +17,7 @@ mod order;
 mod predef;
 mod resolve;
 mod stmt;
+mod suggest;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -190,6 +191,8 @@ pub(crate) struct Checker<'a> {
     /// Keep the lowered routine bodies and data initialisers (false: only the errors are
     /// wanted, see [`check_only`]).
     keep_code: bool,
+    /// "Did you mean" for undeclared names, with its index and its bounded work.
+    suggester: suggest::Suggester,
 }
 
 impl<'a> Checker<'a> {
@@ -253,6 +256,7 @@ impl<'a> Checker<'a> {
             incomplete: Default::default(),
             module_values: 0,
             keep_code: true,
+            suggester: suggest::Suggester::default(),
         }
     }
 
