@@ -10,8 +10,7 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use rapidvc::diag::Diagnostics;
 use rapidvc::source::SourceMap;
 
-#[path = "../tests/support/gen_program.rs"]
-mod gen_program;
+use rapidvc_testkit::gen_program;
 
 /// VmHWM (peak RSS) in kB from /proc/self/status (0 where there is none).
 fn peak_rss_kb() -> u64 {

@@ -12,6 +12,7 @@ pub mod corrected_moves;
 pub mod cycle_hook;
 pub mod egm_controller;
 pub mod handle;
+pub mod mass_storage;
 pub mod monotonic_clock;
 mod motion_thread;
 pub mod period_stats;

@@ -10,8 +10,10 @@ use miette::{Diagnostic, GraphicalReportHandler, GraphicalTheme, Severity};
 
 use crate::source::{SourceId, SourceMap};
 
+pub mod codes;
 mod excerpt;
 
+pub use codes::Code;
 use excerpt::Excerpt;
 pub(crate) use excerpt::escape_controls;
 

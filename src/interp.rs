@@ -38,6 +38,7 @@ pub mod error;
 mod expr;
 pub mod host;
 mod interrupts;
+pub mod operator;
 pub mod pers;
 mod place;
 pub mod stdlib;
@@ -182,6 +183,8 @@ pub struct Interp {
     next_booked: i32,
     retry_limit: u32,
     ints: Interrupts,
+    /// Where the dialogs' answers come from.
+    operator: operator::Operator,
     steps: u64,
     next_poll: u64,
     budget: Option<u64>,
@@ -257,6 +260,7 @@ impl Interp {
             next_booked: errnum::BOOK_FIRST,
             retry_limit: 4,
             ints: Interrupts::default(),
+            operator: operator::Operator::nobody(),
             steps: 0,
             next_poll: u64::MAX,
             budget: None,
@@ -321,6 +325,17 @@ impl Interp {
     /// a clear error instead of overflowing the stack.
     pub fn set_stack_budget(&mut self, bytes: usize) {
         self.stack_budget = bytes;
+    }
+
+    /// Where the dialogs (`TPReadFK`, `UIMessageBox`, …) get their answers (default:
+    /// nobody answers, see [`operator`]).
+    pub fn set_operator(&mut self, op: operator::Operator) {
+        self.operator = op;
+    }
+
+    /// The dialogs' answer source (e.g. to warn about answers left unused).
+    pub fn operator(&self) -> &operator::Operator {
+        &self.operator
     }
 
     /// How many consecutive `RETRY`s of one statement are allowed (default 4).

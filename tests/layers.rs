@@ -10,10 +10,13 @@
 //! more fails the test, so it is deleted with the reference it allowed).
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use proc_macro2::{TokenStream, TokenTree};
 use syn::visit::{self, Visit};
+
+use rapidvc_testkit::src_files;
+use src_files::{root, rust_files};
 
 /// A reference allowed against the layer rule until the change named in `why` removes it.
 struct Exception {
@@ -113,10 +116,6 @@ const EXCEPTIONS: &[Exception] = &[
     },
 ];
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 /// The "may use" table of `docs/architecture.md`: module → the modules it names directly.
 fn layer_table() -> BTreeMap<String, BTreeSet<String>> {
     let doc = std::fs::read_to_string(root().join("docs/architecture.md"))
@@ -169,18 +168,6 @@ fn closure(table: &BTreeMap<String, BTreeSet<String>>) -> BTreeMap<String, BTree
             (m.clone(), seen)
         })
         .collect()
-}
-
-/// Every `.rs` file below `dir`.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).expect("readable directory") {
-        let path = entry.expect("directory entry").path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
 }
 
 /// The module path of a file: `src/a/b.rs` → `[a, b]`.

@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use super::files::{self, Role};
 use super::robots::RobotArg;
-use super::{interrupt, num, progress_line, render};
+use super::{answers, interrupt, num, progress_line, render};
 use crate::program;
 
 pub mod egm_options;
@@ -57,6 +57,10 @@ pub struct RunArgs {
     /// Abort after this many executed statements (at least 1).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: Option<u64>,
+    /// Answers to the operator dialogs (TPReadFK, UIMessageBox, …), one per line in order
+    /// (default: the terminal when stdin is one, else nobody answers).
+    #[arg(long, value_name = "FILE")]
+    pub answers: Option<PathBuf>,
     /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub cycles: u32,
@@ -160,6 +164,13 @@ pub fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let operator = match answers::read(args.answers.as_deref()) {
+        Ok(file) => answers::operator(file.as_ref(), None),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     if interrupted.load(Ordering::Relaxed) {
         eprintln!("interrupted before the program started");
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
@@ -207,6 +218,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let mut it = Interp::new(prog, &registry, Box::new(host));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
+    it.set_operator(operator);
     // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
     it.set_stack_budget(6 << 20);
     let (mut code, drain) = match it.init() {
@@ -235,6 +247,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         progress_line::clear();
         eprintln!("error: {e}");
         code = ExitCode::from(1);
+    }
+    if code == ExitCode::SUCCESS
+        && let Some(w) = answers::unused_warning(it.operator())
+    {
+        progress_line::clear();
+        eprintln!("warning: {w}");
     }
     let was_interrupted = interrupted.load(Ordering::Relaxed);
     let announce =

@@ -28,12 +28,23 @@ pub struct TestArgs {
     #[arg(long, value_name = "N", default_value_t = 50_000_000,
           value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
+    /// Answers to the operator dialogs: each test takes the `[test_name]` section of the
+    /// file, or the answers before the first section.
+    #[arg(long, value_name = "FILE")]
+    pub answers: Option<PathBuf>,
 }
 
 /// Run the tests.
 pub fn run(args: TestArgs) -> ExitCode {
     let files = match rapid_files::find_rapid_files(&args.paths) {
         Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let answers = match super::answers::read(args.answers.as_deref()) {
+        Ok(a) => a,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
@@ -83,6 +94,7 @@ pub fn run(args: TestArgs) -> ExitCode {
             let mut it = Interp::new(prog.clone(), &loaded.registry, Box::new(host));
             it.set_budget(Some(args.max_steps));
             it.set_stack_budget(6 << 20);
+            it.set_operator(super::answers::operator(answers.as_ref(), Some(&name)));
             let res = it.init().and_then(|_| it.run(&name));
             let label = format!("test {} :: {name}", file.display());
             match res {

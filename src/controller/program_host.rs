@@ -376,6 +376,10 @@ impl Host for ControllerHost {
         self.io.write_signal(name, value)
     }
 
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        self.io.signal_kind(name)
+    }
+
     fn motion_submit(&mut self, mut cmd: MotionCommand) -> Result<u64, HostError> {
         self.state_checked()?;
         self.last_id += 1;

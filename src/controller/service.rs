@@ -230,6 +230,8 @@ pub struct MechUnitInfo {
     pub tool: String,
     /// Active work object name.
     pub wobj: String,
+    /// Active payload name (`GripLoad`; `load0` when none is held).
+    pub payload: String,
 }
 
 /// Where the robot is.
@@ -262,6 +264,23 @@ pub struct CfgInstance {
     pub name: String,
     /// Attribute name and value, in file order.
     pub attributes: Vec<(String, String)>,
+}
+
+/// One message of an external queue (RWS `rw/dipc`): what RAPID's RMQ and a service exchange.
+/// The data is RMQ text as the sender wrote it (for a RAPID task: the data type and the value,
+/// as RAPID's `RMQSendMessage` would carry it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DipcMessage {
+    /// The sender's queue (a task name, or an external queue), where answers go.
+    pub source: String,
+    /// Command number (`dipc-cmd`).
+    pub cmd: i64,
+    /// User-defined number (`dipc-userdef`).
+    pub userdef: i64,
+    /// Message type (`dipc-msgtype`: 0 or 1).
+    pub msgtype: i64,
+    /// The data as text.
+    pub data: String,
 }
 
 /// Why a request failed. Services map these to their protocol's errors (HTTP 404, 400, …).
@@ -428,10 +447,79 @@ pub enum Request {
         /// Instances.
         reply: Reply<Vec<CfgInstance>>,
     },
+    /// Create an external message queue (RWS `rw/dipc?action=dipc-create`) that RAPID tasks can
+    /// send to with `RMQSendMessage` after `RMQFindSlot`.
+    DipcCreate {
+        /// Queue name.
+        queue: String,
+        /// Buffer size in bytes the queue may hold.
+        size: u32,
+        /// Largest message in bytes.
+        max_message: u32,
+        /// `true` when created, `false` when a queue of that name existed already.
+        reply: Reply<bool>,
+    },
+    /// Send a message to a queue: a task's RMQ (by task name) or an external queue.
+    DipcSend {
+        /// Target queue or task name.
+        target: String,
+        /// The message.
+        message: DipcMessage,
+        /// Reply when queued.
+        reply: Reply<()>,
+    },
+    /// Take the oldest message of an external queue, if any (never waits).
+    DipcRead {
+        /// Queue name.
+        queue: String,
+        /// The message, or `None` when the queue is empty.
+        reply: Reply<Option<DipcMessage>>,
+    },
     /// Where the controller's mass storage roots are on the host (`HOME`, `TEMP`,
     /// `RAMDISK`), for file services that apply the same sandbox as RAPID's file
     /// instructions.
     FileRoots(Reply<Vec<(String, std::path::PathBuf)>>),
+}
+
+impl Request {
+    /// Answer this request with `error`, whatever it asks: for an endpoint that does not serve
+    /// a kind of request (yet), so the service gets a clear error instead of waiting.
+    pub fn refuse(self, error: ServiceError) {
+        fn no<T>(reply: Reply<T>, error: ServiceError) {
+            let _ = reply.send(Err(error));
+        }
+        match self {
+            Request::Execution(r) => no(r, error),
+            Request::Start { reply, .. } => no(reply, error),
+            Request::Stop(r) | Request::ResetPp(r) => no(r, error),
+            Request::CtrlState(r) => no(r, error),
+            Request::SetMotors { reply, .. }
+            | Request::SetOpMode { reply, .. }
+            | Request::SetSpeedRatio { reply, .. }
+            | Request::SetTaskActive { reply, .. }
+            | Request::SetSignal { reply, .. }
+            | Request::SetSymbol { reply, .. }
+            | Request::ClearElog { reply, .. }
+            | Request::DipcSend { reply, .. } => no(reply, error),
+            Request::OpMode(r) => no(r, error),
+            Request::SpeedRatio(r) => no(r, error),
+            Request::Tasks(r) => no(r, error),
+            Request::Modules { reply, .. } => no(reply, error),
+            Request::Signals(r) => no(r, error),
+            Request::Signal { reply, .. } => no(reply, error),
+            Request::Symbol { reply, .. } => no(reply, error),
+            Request::Symbols { reply, .. } => no(reply, error),
+            Request::Elog { reply, .. } => no(reply, error),
+            Request::Robot(r) => no(r, error),
+            Request::RobTarget { reply, .. } => no(reply, error),
+            Request::System(r) => no(r, error),
+            Request::MechUnits(r) => no(r, error),
+            Request::Cfg { reply, .. } => no(reply, error),
+            Request::DipcCreate { reply, .. } => no(reply, error),
+            Request::DipcRead { reply, .. } => no(reply, error),
+            Request::FileRoots(r) => no(r, error),
+        }
+    }
 }
 
 /// Something that happened in the controller.
@@ -470,6 +558,13 @@ pub enum Event {
     Elog(u32, ElogEntry),
     /// A sample of the robot's position (decimated for services).
     Robot(RobotState),
+    /// A message arrived in an external queue (it stays there until read with `DipcRead`).
+    Dipc {
+        /// Queue name.
+        queue: String,
+        /// The message.
+        message: DipcMessage,
+    },
 }
 
 /// The services' side: cloneable, usable from any tokio task.
@@ -573,5 +668,32 @@ mod tests {
         drop(endpoint);
         let gone = rt.block_on(handle.ask(Request::OpMode));
         assert_eq!(gone, Err(ServiceError::Gone));
+    }
+
+    /// `refuse` answers a request of any kind with the error, so a service never waits for a
+    /// request its controller does not serve.
+    #[test]
+    fn refused_requests_answer_with_the_error() {
+        let rt = tokio::runtime::Builder::new_current_thread()
+            .build()
+            .unwrap_or_else(|e| panic!("runtime: {e}"));
+        let (handle, mut endpoint) = channel();
+        rt.block_on(async {
+            let asker = handle.ask(|reply| Request::DipcRead {
+                queue: "Q".into(),
+                reply,
+            });
+            let answer = async {
+                loop {
+                    if let Some(request) = endpoint.try_next() {
+                        request.refuse(ServiceError::NotAllowed("no queues".into()));
+                        break;
+                    }
+                    tokio::task::yield_now().await;
+                }
+            };
+            let (got, ()) = tokio::join!(asker, answer);
+            assert_eq!(got, Err(ServiceError::NotAllowed("no queues".into())));
+        });
     }
 }

@@ -4,10 +4,12 @@
 
 mod clock;
 mod core;
+mod dialogs;
 mod egm;
 mod egm_path;
 mod interrupts;
 mod io;
+mod io_events;
 mod math;
 mod motion;
 mod pose;
@@ -79,7 +81,9 @@ impl Registry {
 
         clock::register(&mut r);
         io::register(&mut r);
+        dialogs::register(&mut r);
         interrupts::register(&mut r);
+        io_events::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

@@ -7,6 +7,7 @@ use miette::{Diagnostic, LabeledSpan};
 
 use super::errnum;
 use crate::diag::RapidDiagnostic;
+use crate::diag::codes::{self, Code};
 use crate::source::{SourceId, SourceMap, Span};
 
 /// What kind of run-time error this is.
@@ -121,14 +122,14 @@ impl Diagnostic for RuntimeError {
     fn code<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
         let code = match self.kind {
             ErrorKind::Rapid(n) => match errnum::by_num(n) {
-                Some(e) => format!("rapidvc::run::{}", e.name),
-                None => "rapidvc::run::user_error".to_string(),
+                Some(e) => codes::rapid_error_code(e.name),
+                None => Code::RunUserError.to_string(),
             },
-            ErrorKind::Unsupported => "rapidvc::run::unsupported".into(),
-            ErrorKind::Placeholder => "rapidvc::run::placeholder".into(),
-            ErrorKind::Aborted => "rapidvc::run::aborted".into(),
-            ErrorKind::Host => "rapidvc::run::host".into(),
-            ErrorKind::Assertion => "rapidvc::test::assertion".into(),
+            ErrorKind::Unsupported => Code::RunUnsupported.to_string(),
+            ErrorKind::Placeholder => Code::RunPlaceholder.to_string(),
+            ErrorKind::Aborted => Code::RunAborted.to_string(),
+            ErrorKind::Host => Code::RunHost.to_string(),
+            ErrorKind::Assertion => Code::TestAssertion.to_string(),
         };
         Some(Box::new(code))
     }

@@ -201,6 +201,13 @@ pub trait Host {
     /// Set an output signal (or simulate an input).
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError>;
 
+    /// The kind of a configured signal (DI, DO, AI, …), `None` when there is no such
+    /// signal (`AliasIO`, `ValidIO`).
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        let _ = name;
+        None
+    }
+
     /// Plan and queue a move; blocks while the motion queue is full. The host numbers the
     /// moves: the `id` in `cmd` is replaced, and the new one is returned (for
     /// [`MotionWait::Done`]). A move that cannot be executed is refused here, before the
@@ -404,6 +411,11 @@ impl Host for VirtualHost {
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError> {
         let id = self.signals.lookup_or_err(name).map_err(io_error)?;
         self.signals.set(id, value).map(drop).map_err(io_error)
+    }
+
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        let id = self.signals.lookup(name)?;
+        self.signals.def(id).map(|d| d.kind)
     }
 }
 

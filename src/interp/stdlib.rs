@@ -9,4 +9,5 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("<stdlib>/zone.sys", include_str!("../../stdlib/zone.sys")),
     ("<stdlib>/egm.sys", include_str!("../../stdlib/egm.sys")),
     ("<stdlib>/misc.sys", include_str!("../../stdlib/misc.sys")),
+    ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];

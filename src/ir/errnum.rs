@@ -86,6 +86,10 @@ errs! {
     ERR_TP_DIBREAK = 1303, "TP read interrupted by a digital input";
     ERR_TP_MAXTIME = 1304, "TP read timed out";
     ERR_TP_NO_CLIENT = 1305, "No teach pendant client";
+    ERR_TP_PERSBOOLBREAK = 1306, "TP read interrupted by a persistent bool";
+    ERR_UI_INITVALUE = 1307, "Dialog initial value outside its limits";
+    ERR_UI_MAXMIN = 1308, "Dialog minimum value greater than its maximum";
+    ERR_UI_NOTINT = 1309, "Dialog value is not an integer";
     ERR_ROBLIMIT = 1401, "Robot position outside its limits";
     ERR_OUTSIDE_REACH = 1402, "Position outside reach";
     ERR_WHLSEARCH = 1403, "No search hit";

@@ -5,7 +5,7 @@
 //! Parameter syntax: `[\] [INOUT|VAR|PERS|REF] type name [{*[,*[,*]]}]`, with `|` between
 //! mutually exclusive optional alternatives. `REF` is a read-only reference used by natives
 //! that inspect big values without copying them (`Dim`). Type `anytype` accepts any value
-//! type, `anynum` accepts `num` or `dnum`.
+//! type, `anynum` accepts `num` or `dnum`, `anysignal` any I/O signal or a string naming one.
 
 use std::fmt;
 

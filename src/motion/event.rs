@@ -3,6 +3,8 @@
 
 use std::fmt;
 
+use crate::events::EventKind;
+pub use crate::events::Severity;
 use crate::robot::error::msg_num;
 use crate::robot::{ConfData, KinError};
 use crate::source::Span;
@@ -143,19 +145,20 @@ impl MotionError {
     /// * corner path failure: 50024;
     /// * circle uncertain: 50063 (ABB's number as remembered, **unverified**).
     pub fn event(&self) -> Option<(u32, &'static str)> {
-        match self {
-            MotionError::Kinematics { error, .. } => Some(error.event()),
-            MotionError::ConfigurationChanged { .. } => Some((50050, "Position outside reach")),
-            MotionError::CircleUncertain { .. } => Some((50063, "Circle uncertain")),
-            MotionError::CornerPathFailure { .. } => Some((50024, "Corner path failure")),
-            MotionError::PathCorrection { number, title, .. } => Some((*number, title)),
-            MotionError::JointSpeed { .. } => None,
+        let kind = match self {
+            MotionError::Kinematics { error, .. } => error.event_kind(),
+            MotionError::ConfigurationChanged { .. } => EventKind::OutsideReach,
+            MotionError::CircleUncertain { .. } => EventKind::CircleUncertain,
+            MotionError::CornerPathFailure { .. } => EventKind::CornerPathFailure,
+            MotionError::PathCorrection { number, title, .. } => return Some((*number, title)),
+            MotionError::JointSpeed { .. } => return None,
             MotionError::InvalidData { .. }
             | MotionError::NotSupported { .. }
             | MotionError::Halted
             | MotionError::ExternalGuidance
-            | MotionError::NotAtStopPoint => None,
-        }
+            | MotionError::NotAtStopPoint => return None,
+        };
+        Some((kind.number(), kind.title()))
     }
 
     /// The RAPID error an `ERROR` handler can catch, where one applies.
@@ -185,17 +188,6 @@ impl MotionError {
             },
         }
     }
-}
-
-/// How serious an event is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Severity {
-    /// For information.
-    Info,
-    /// The robot went on (e.g. a fly-by point became a stop point).
-    Warning,
-    /// The move was refused or the robot stopped.
-    Error,
 }
 
 /// One entry of the motion core's event log.

@@ -1,5 +1,7 @@
 //! Kinematic errors and their ABB event numbers and RAPID error names.
 
+use crate::events::EventKind;
+
 use super::JointsDeg;
 use super::conf::ConfData;
 use super::singularity::SingularityKind;
@@ -108,12 +110,18 @@ impl KinError {
     /// singularity". The mapping of an unreachable *configuration* to 50050 is one of the two
     /// candidates (docs/robot.md, "Errors and events"; ABB's exact event is unverified).
     pub fn event(&self) -> (u32, &'static str) {
+        let kind = self.event_kind();
+        (kind.number(), kind.title())
+    }
+
+    /// The entry of the event table ([`crate::events`]) that [`KinError::event`] reports.
+    pub fn event_kind(&self) -> EventKind {
         match self {
             KinError::OutsideReach { .. }
             | KinError::ConfigurationUnreachable { .. }
-            | KinError::NotFinite => (50050, "Position outside reach"),
-            KinError::JointOutOfRange { .. } => (50027, "Joint out of range"),
-            KinError::Singularity { .. } => (50026, "Close to singularity"),
+            | KinError::NotFinite => EventKind::OutsideReach,
+            KinError::JointOutOfRange { .. } => EventKind::JointOutOfRange,
+            KinError::Singularity { .. } => EventKind::Singularity,
         }
     }
 

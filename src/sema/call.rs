@@ -18,6 +18,9 @@ pub(crate) enum PTy {
     Any(u8),
     /// num or dnum.
     AnyNum,
+    /// An I/O signal of any kind (`signaldi` … `signalgo`) or a string naming one
+    /// (`AliasIO`, `ValidIO`).
+    AnySignal,
     /// A switch.
     Switch,
 }
@@ -65,6 +68,8 @@ impl Checker<'_> {
                 PTy::Any(p.ty.rank)
             } else if p.ty.is_anynum() {
                 PTy::AnyNum
+            } else if p.ty.name.eq_ignore_ascii_case("anysignal") {
+                PTy::AnySignal
             } else {
                 match self.types.lookup(&p.ty.name) {
                     Some(id) => PTy::T(Ty {
@@ -454,6 +459,11 @@ impl Checker<'_> {
             ),
             PTy::Any(_) => (t.rank > 0, "an array".to_string()),
             PTy::AnyNum => (t == Ty::NUM || t == Ty::DNUM, "num or dnum".to_string()),
+            PTy::AnySignal => (
+                t.rank == 0
+                    && (t.base == TypeId::STRING || self.types.name(t.base).starts_with("signal")),
+                "a signal or a string".to_string(),
+            ),
             PTy::Switch => (false, "switch".to_string()),
         };
         if ok {

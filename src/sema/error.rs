@@ -4,7 +4,7 @@ use std::fmt;
 
 use miette::{Diagnostic, LabeledSpan, Severity};
 
-use crate::diag::RapidDiagnostic;
+use crate::diag::{Code, RapidDiagnostic};
 use crate::ir::limits::{MAX_DECL_VALUES, MAX_TASK_VALUES, thousands};
 use crate::source::{SourceId, Span};
 
@@ -286,7 +286,7 @@ pub struct SemaError {
 
 /// Rendered parts of a diagnostic.
 struct Details {
-    code: &'static str,
+    code: Code,
     message: String,
     label: String,
     help: Option<String>,
@@ -315,13 +315,13 @@ impl SemaError {
         };
         match &self.kind {
             K::Undeclared { name, suggestion } => d(
-                "rapidvc::sema::undeclared",
+                Code::SemaUndeclared,
                 format!("`{name}` is not declared"),
                 "not declared in this routine, its module or any global scope",
                 suggestion.as_ref().map(|s| format!("did you mean `{s}`?")),
             ),
             K::UnknownSignal { name, ty } => d(
-                "rapidvc::sema::unknown_signal",
+                Code::SemaUnknownSignal,
                 format!("`{name}` is not a configured I/O signal"),
                 &format!("needs a `{ty}`"),
                 Some(format!(
@@ -329,7 +329,7 @@ impl SemaError {
                 )),
             ),
             K::Unsupported { name, what } => d(
-                "rapidvc::sema::unsupported",
+                Code::SemaUnsupported,
                 format!("`{name}` is not supported by rapidvc"),
                 &format!("unknown {what}"),
                 Some(format!(
@@ -337,7 +337,7 @@ impl SemaError {
                 )),
             ),
             K::UnknownType { name } => d(
-                "rapidvc::sema::unknown_type",
+                Code::SemaUnknownType,
                 format!("unknown data type `{name}`"),
                 "no RECORD or ALIAS of this name, and not a built-in type",
                 None,
@@ -347,7 +347,7 @@ impl SemaError {
                 expected,
                 found,
             } => d(
-                "rapidvc::sema::type_mismatch",
+                Code::SemaTypeMismatch,
                 format!(
                     "{context} must be {}, not {}",
                     quote(expected),
@@ -357,7 +357,7 @@ impl SemaError {
                 None,
             ),
             K::BadOperands { op, lhs, rhs } => d(
-                "rapidvc::sema::bad_operands",
+                Code::SemaBadOperands,
                 match rhs {
                     Some(r) => format!("`{op}` cannot combine `{lhs}` and `{r}`"),
                     None => format!("`{op}` cannot be applied to `{lhs}`"),
@@ -366,13 +366,13 @@ impl SemaError {
                 None,
             ),
             K::TooManyArgs { callee } => d(
-                "rapidvc::sema::too_many_args",
+                Code::SemaTooManyArgs,
                 format!("too many arguments for `{callee}`"),
                 "no parameter left for this argument",
                 None,
             ),
             K::MissingArg { callee, param } => d(
-                "rapidvc::sema::missing_arg",
+                Code::SemaMissingArg,
                 format!("`{callee}` needs an argument for `{param}`"),
                 &format!("`{param}` is missing"),
                 None,
@@ -382,26 +382,26 @@ impl SemaError {
                 name,
                 is_required,
             } => d(
-                "rapidvc::sema::unknown_optional",
+                Code::SemaUnknownOptional,
                 format!("`\\{name}` is not an optional parameter of `{callee}`"),
                 "unknown optional argument",
                 is_required
                     .then(|| format!("`{name}` is a required parameter: pass it without `\\`")),
             ),
             K::UnknownNamed { callee, name } => d(
-                "rapidvc::sema::unknown_named",
+                Code::SemaUnknownNamed,
                 format!("`{callee}` has no parameter `{name}`"),
                 "unknown parameter name",
                 None,
             ),
             K::DuplicateArg { name } => d(
-                "rapidvc::sema::duplicate_arg",
+                Code::SemaDuplicateArg,
                 format!("the argument for `{name}` is given twice"),
                 "second time",
                 None,
             ),
             K::ExclusiveArgs { first, second } => d(
-                "rapidvc::sema::exclusive_args",
+                Code::SemaExclusiveArgs,
                 format!("`\\{first}` and `\\{second}` cannot be used together"),
                 "alternative to an argument already given",
                 None,
@@ -409,14 +409,14 @@ impl SemaError {
             K::SwitchValue { name, is_switch } => {
                 if *is_switch {
                     d(
-                        "rapidvc::sema::switch_value",
+                        Code::SemaSwitchValue,
                         format!("the switch `\\{name}` takes no value"),
                         "remove `:= …`",
                         None,
                     )
                 } else {
                     d(
-                        "rapidvc::sema::switch_value",
+                        Code::SemaSwitchValue,
                         format!("`\\{name}` needs a value"),
                         "write `\\Name := value`",
                         Some(format!(
@@ -426,37 +426,37 @@ impl SemaError {
                 }
             }
             K::ArgMode { param, mode, found } => d(
-                "rapidvc::sema::arg_mode",
+                Code::SemaArgMode,
                 format!("the {mode} parameter `{param}` needs {}", mode_need(mode)),
                 &format!("this is {found}"),
                 None,
             ),
             K::NotAssignable { name, why } => d(
-                "rapidvc::sema::not_assignable",
+                Code::SemaNotAssignable,
                 format!("`{name}` cannot be changed: it is {why}"),
                 "assigned here",
                 None,
             ),
             K::NotAPlace { context } => d(
-                "rapidvc::sema::not_a_place",
+                Code::SemaNotAPlace,
                 format!("{context} must be a data object, not an expression"),
                 "not a variable or persistent",
                 None,
             ),
             K::ReturnValueInProc => d(
-                "rapidvc::sema::return_value",
+                Code::SemaReturnValue,
                 "a procedure or trap cannot return a value".into(),
                 "remove this value",
                 None,
             ),
             K::MissingReturnValue => d(
-                "rapidvc::sema::return_value",
+                Code::SemaReturnValue,
                 "RETURN in a function needs a value".into(),
                 "RETURN without a value",
                 None,
             ),
             K::FuncWithoutReturn { name } => d(
-                "rapidvc::sema::missing_return",
+                Code::SemaMissingReturn,
                 format!("function `{name}` has no RETURN"),
                 "this function never returns a value",
                 None,
@@ -464,44 +464,44 @@ impl SemaError {
             K::FuncEndReachable { name } => Details {
                 warning: true,
                 ..d(
-                    "rapidvc::sema::missing_return",
+                    Code::SemaMissingReturn,
                     format!("function `{name}` can reach its end without RETURN"),
                     "ERR_FNCNORET is raised if execution gets here",
                     None,
                 )
             },
             K::Duplicate { name, .. } => d(
-                "rapidvc::sema::duplicate",
+                Code::SemaDuplicate,
                 format!("`{name}` is declared more than once"),
                 "declared again here",
                 None,
             ),
             K::PredefinedRedeclared { name } => d(
-                "rapidvc::sema::predefined",
+                Code::SemaPredefined,
                 format!("`{name}` is predefined and cannot be redeclared"),
                 "redeclares predefined data",
                 Some("declare it LOCAL to shadow the predefined data in this module only".into()),
             ),
             K::PersMismatch { name, first, this } => d(
-                "rapidvc::sema::pers_mismatch",
+                Code::SemaPersMismatch,
                 format!("persistent `{name}` is `{first}` elsewhere but `{this}` here"),
                 "all declarations of a PERS must have the same type",
                 None,
             ),
             K::WrongRoutineKind { name, is, needed } => d(
-                "rapidvc::sema::routine_kind",
+                Code::SemaRoutineKind,
                 format!("`{name}` is {is}, not {needed}"),
                 &format!("{needed} expected"),
                 None,
             ),
             K::HandlerOnly { what } => d(
-                "rapidvc::sema::handler_only",
+                Code::SemaHandlerOnly,
                 format!("{what} is only allowed in an ERROR handler"),
                 "outside an ERROR handler",
                 None,
             ),
             K::BadLabel { name, exists } => d(
-                "rapidvc::sema::label",
+                Code::SemaLabel,
                 if *exists {
                     format!("GOTO cannot jump into the block that holds label `{name}`")
                 } else {
@@ -515,68 +515,68 @@ impl SemaError {
                 expected,
                 found,
             } => d(
-                "rapidvc::sema::aggregate",
+                Code::SemaAggregate,
                 format!("`{ty}` needs {expected} items, this aggregate has {found}"),
                 "wrong number of items",
                 None,
             ),
             K::AggregateUntyped => d(
-                "rapidvc::sema::aggregate",
+                Code::SemaAggregate,
                 "the type of this aggregate cannot be told from where it is used".into(),
                 "untyped aggregate",
                 Some("assign it to data of a known type first".into()),
             ),
             K::NotArray { ty, given } => d(
-                "rapidvc::sema::index",
+                Code::SemaIndex,
                 format!("`{ty}` cannot be indexed with {given} indices"),
                 "indexed here",
                 None,
             ),
             K::UnknownComponent { ty, field } => d(
-                "rapidvc::sema::component",
+                Code::SemaComponent,
                 format!("`{ty}` has no component `{field}`"),
                 "unknown component",
                 None,
             ),
             K::NonValue { ty, what } => d(
-                "rapidvc::sema::non_value",
+                Code::SemaNonValue,
                 format!("`{ty}` is not a value type: it cannot be {what}"),
                 "non-value data",
                 None,
             ),
             K::NotConstant { what } => d(
-                "rapidvc::sema::not_constant",
+                Code::SemaNotConstant,
                 format!("{what} must be a constant"),
                 "not computable before the program runs",
                 None,
             ),
             K::InitCycle { name } => d(
-                "rapidvc::sema::init_cycle",
+                Code::SemaInitCycle,
                 format!("the initial value of `{name}` depends on itself"),
                 "circular initialisation",
                 None,
             ),
-            K::BadDecl { why } => d("rapidvc::sema::declaration", why.clone(), "here", None),
+            K::BadDecl { why } => d(Code::SemaDeclaration, why.clone(), "here", None),
             K::NotOptional { name } => d(
-                "rapidvc::sema::not_optional",
+                Code::SemaNotOptional,
                 format!("`{name}` is not an optional parameter of this routine"),
                 "needs an optional parameter",
                 None,
             ),
             K::SwitchAsValue { name } => d(
-                "rapidvc::sema::switch_as_value",
+                Code::SemaSwitchAsValue,
                 format!("the switch `{name}` has no value"),
                 "used as a value",
                 Some(format!("test it with Present({name})")),
             ),
             K::StringTooLong { len } => d(
-                "rapidvc::sema::string_too_long",
+                Code::SemaStringTooLong,
                 format!("string of {len} characters; RAPID strings hold at most 80"),
                 "too long",
                 None,
             ),
             K::ArraySizeTooLarge { size } => d(
-                "rapidvc::sema::data_limit",
+                Code::SemaDataLimit,
                 format!(
                     "array size {size} is too large: one declaration holds at most {} values",
                     thousands(MAX_DECL_VALUES)
@@ -585,7 +585,7 @@ impl SemaError {
                 Some(DATA_LIMIT_HELP.into()),
             ),
             K::DeclTooLarge { name, values } => d(
-                "rapidvc::sema::data_limit",
+                Code::SemaDataLimit,
                 format!(
                     "`{name}` holds {} values: one declaration holds at most {}",
                     thousands(*values),
@@ -599,7 +599,7 @@ impl SemaError {
                 routine,
                 values,
             } => d(
-                "rapidvc::sema::data_limit",
+                Code::SemaDataLimit,
                 match routine {
                     None => format!(
                         "with `{name}`, the module data holds {} values: a task holds at most {}",
@@ -616,7 +616,7 @@ impl SemaError {
                 Some(DATA_LIMIT_HELP.into()),
             ),
             K::BadSignature { native, ty } => d(
-                "rapidvc::sema::internal",
+                Code::SemaInternal,
                 format!("internal error: built-in `{native}` uses unknown type `{ty}`"),
                 "here",
                 None,

@@ -106,6 +106,7 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
         ],
     ),
     ("egm_minmax", &[("min", "num"), ("max", "num")]),
+    ("listitem", &[("image", "string"), ("text", "string")]),
 ];
 
 /// Non-value and semi-value types, modelled as records with hidden components.
@@ -124,6 +125,20 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("signalgo", &[("name", "string")]),
     ("socketdev", &[("id", "num")]),
     ("iodev", &[("id", "num")]),
+    (
+        "trapdata",
+        &[
+            ("domain", "num"),
+            ("number", "num"),
+            ("type", "num"),
+            ("title", "string"),
+            ("str1", "string"),
+            ("str2", "string"),
+            ("str3", "string"),
+            ("str4", "string"),
+            ("str5", "string"),
+        ],
+    ),
 ];
 
 /// Aliases of `num` known to the kernel and the EGM option.
@@ -137,6 +152,9 @@ const NUM_ALIASES: &[&str] = &[
     "errtype",
     "identno",
     "aiotrigg",
+    "buttondata",
+    "icondata",
+    "tpnum",
     "egmstate",
     "egmstopmode",
     "egmframetype",

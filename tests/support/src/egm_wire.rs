@@ -1,5 +1,4 @@
 //! EGM messages a test sensor sends, encoded with rapidvc's own protobuf types.
-#![allow(dead_code)]
 
 use prost::Message;
 use rapidvc::egm::proto;

@@ -1,5 +1,5 @@
 //! The CSV files `rapidvc run` writes (`--trace`, `--egm-log`): a header line and comma-separated fields, read by column name.
-#![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 

@@ -1,10 +1,5 @@
 //! Shared EGM test harness: the built-in sensor on a thread, and a controller loop (session + transport + servo) at 4 ms.
-#![allow(
-    dead_code,
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::indexing_slicing
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::Arc;

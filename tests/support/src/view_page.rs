@@ -1,6 +1,5 @@
 //! Reading a view page's embedded data back (the inverse of `src/output/view/encode.rs`), for the
 //! view tests.
-#![allow(dead_code)]
 
 use serde_json::Value;
 

@@ -1,10 +1,5 @@
 //! Child processes for tests that run `rapidvc run` and sensor scripts: output collected on threads, every wait bounded, the child killed when its guard is dropped.
-#![allow(
-    dead_code,
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::indexing_slicing
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -122,22 +117,23 @@ impl Drop for Proc {
     }
 }
 
-/// The repository root.
+/// The repository root (this crate lives in `tests/support`).
 pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors().nth(2).unwrap_or(here).to_path_buf()
 }
 
-/// `rapidvc run` on `program` (relative to the repository root) with `args`.
-pub fn rapidvc_run(program: &str, args: &[String]) -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rapidvc"));
+/// `rapidvc run` on `program` (relative to the repository root) with `args`; `rapidvc` is
+/// the binary's command ([`crate::rapidvc!`]).
+pub fn rapidvc_run(mut cmd: Command, program: &str, args: &[String]) -> Command {
     cmd.arg("run").arg(root().join(program)).args(args);
     cmd.env("NO_COLOR", "1").current_dir(root());
     cmd
 }
 
 /// Runs `rapidvc run` to its end (at most `timeout`).
-pub fn run_program(program: &str, args: &[String], timeout: Duration) -> Ended {
-    let ended = Proc::spawn(rapidvc_run(program, args)).wait(timeout);
+pub fn run_program(rapidvc: Command, program: &str, args: &[String], timeout: Duration) -> Ended {
+    let ended = Proc::spawn(rapidvc_run(rapidvc, program, args)).wait(timeout);
     assert!(
         !ended.timed_out,
         "rapidvc run {program} did not end within {timeout:?}\n{}\n{}",
@@ -214,4 +210,42 @@ pub fn printed(stdout: &str, prefix: &str) -> Vec<f64> {
 /// True when every value is within `tol` of the wanted one.
 pub fn near(got: &[f64], want: &[f64], tol: f64) -> bool {
     got.len() == want.len() && got.iter().zip(want).all(|(a, b)| (a - b).abs() <= tol)
+}
+
+/// `rapidvc ARGS` (`cmd`, from [`crate::rapidvc!`]) run to its end in `dir`, with `COLUMNS`
+/// = `columns` and no colour: (exit code, stdout, stderr) as text.
+pub fn output_in(
+    mut cmd: Command,
+    dir: &Path,
+    args: &[&str],
+    columns: u16,
+) -> (i32, String, String) {
+    let out = cmd
+        .args(args)
+        .current_dir(dir)
+        .env("COLUMNS", columns.to_string())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run rapidvc");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The arguments of a golden run of the program `path`: `run`, the extra arguments of its
+/// `! args: …` line if it has one, and its file name (the run happens in its directory).
+pub fn golden_args(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).expect("read program");
+    let mut args = vec!["run".to_string()];
+    if let Some(extra) = text.lines().find_map(|l| l.strip_prefix("! args:")) {
+        args.extend(extra.split_whitespace().map(str::to_string));
+    }
+    let name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .expect("file name");
+    args.push(name.to_string());
+    args
 }

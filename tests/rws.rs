@@ -1,0 +1,481 @@
+//! Robot Web Services over real loopback sockets: login and sessions, both representations,
+//! ABB's status codes and error bodies, bad input of every kind, many sessions, subscriptions
+//! over WebSocket and their clean-up.
+//!
+//! The controller side is `tests/support/fake_controller.rs`, a stand-in that answers the
+//! service contract from fixed state until `rapidvc serve` serves it; these tests then move
+//! to the real controller. Every test ends by itself (read time-outs on every socket).
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+
+use rapidvc_testkit::fake_controller;
+use rapidvc_testkit::rws_http;
+
+use std::time::{Duration, Instant};
+
+use fake_controller::{FakeController, Inject};
+use rapidvc::services::rws::{RwsOptions, RwsServer, router};
+use rws_http::{Client, raw};
+
+fn start(fake: &FakeController, opts: RwsOptions) -> RwsServer {
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let max = opts.max_connections;
+    RwsServer::start(l, router(fake.handle(), opts), max).unwrap()
+}
+
+fn login(srv: &RwsServer) -> Client {
+    let mut c = Client::new(srv.local_addr(), "Default User", "robotics");
+    let r = c.get("/rw/panel/ctrlstate?json=1");
+    assert_eq!(r.status, 200, "{}", r.text());
+    c
+}
+
+#[test]
+fn no_resource_answers_without_login() {
+    let fake = FakeController::start("nologin");
+    let srv = start(&fake, RwsOptions::default());
+    for path in [
+        "/rw/panel/ctrlstate",
+        "/rw/rapid/execution?json=1",
+        "/fileservice/$HOME",
+        "/poll/1",
+        "/no/such/thing",
+        "/logout",
+    ] {
+        let r = raw(
+            srv.local_addr(),
+            format!("GET {path} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+        )
+        .unwrap();
+        assert_eq!(r.status, 401, "{path}");
+        let ch = r.header("www-authenticate").unwrap();
+        assert!(
+            ch.starts_with("Digest realm=\"validusers@robapi.abb\""),
+            "{ch}"
+        );
+        assert!(
+            ch.contains("qop=\"auth\"") && ch.contains("nonce=\""),
+            "{ch}"
+        );
+    }
+}
+
+#[test]
+fn wrong_credentials_get_401_even_with_a_valid_cookie() {
+    let fake = FakeController::start("wrongpw");
+    let srv = start(&fake, RwsOptions::default());
+    let mut bad = Client::new(srv.local_addr(), "Default User", "wrong");
+    let r = bad.get("/rw/panel/ctrlstate?json=1");
+    assert_eq!(r.status, 401);
+    assert_eq!(r.header("content-type"), Some("application/json"));
+    let j = r.json();
+    assert!(
+        j["_embedded"]["status"]["msg"]
+            .as_str()
+            .unwrap()
+            .contains("password")
+    );
+    assert!(bad.cookie("ABBCX").is_none());
+    let mut other = Client::new(srv.local_addr(), "Admin", "robotics");
+    assert_eq!(other.get("/rw/system").status, 401);
+    // A good session's cookie does not excuse wrong credentials sent with it.
+    let good = login(&srv);
+    bad.cookies = good.cookies.clone();
+    assert_eq!(
+        bad.get("/rw/system").status,
+        200,
+        "the cookie alone is a session"
+    );
+    assert_eq!(bad.request_signed("GET", "/rw/system", b"").status, 401);
+}
+
+#[test]
+fn the_session_cookie_replaces_credentials_until_logout() {
+    let fake = FakeController::start("cookie");
+    let srv = start(&fake, RwsOptions::default());
+    let mut c = login(&srv);
+    assert!(c.cookie("ABBCX").is_some());
+    assert!(c.cookie("-http-session-").is_some());
+    c.digest = false;
+    assert_eq!(c.get("/rw/panel/opmode?json=1").status, 200);
+    // ABBCX alone (what abb_robot_client sends for the WebSocket) is enough.
+    c.cookies.retain(|(k, _)| k == "ABBCX");
+    assert_eq!(c.get("/rw/panel/opmode?json=1").status, 200);
+    let r = c.get("/logout");
+    assert_eq!(r.status, 200);
+    assert!(r.text().contains("<html"));
+    assert_eq!(c.get("/rw/panel/opmode").status, 401);
+    // A forged cookie is no session.
+    c.cookies = vec![("ABBCX".into(), "0123456789abcdef0123456789abcdef".into())];
+    assert_eq!(c.get("/rw/panel/opmode").status, 401);
+}
+
+#[test]
+fn both_representations_carry_abb_classes() {
+    let fake = FakeController::start("repr");
+    let srv = start(&fake, RwsOptions::default());
+    let mut c = login(&srv);
+    let x = c.get("/rw/rapid/tasks");
+    assert_eq!(x.status, 200);
+    assert_eq!(
+        x.header("content-type"),
+        Some("application/xhtml+xml;v=1.0")
+    );
+    let t = x.text();
+    assert!(
+        t.contains("<li class=\"rap-task-li\" title=\"T_ROB1\">"),
+        "{t}"
+    );
+    assert!(t.contains("<span class=\"excstate\">read</span>"));
+    assert!(t.contains("<span class=\"motiontask\">TRUE</span>"));
+    let j = c.get("/rw/rapid/tasks?json=1");
+    assert_eq!(j.header("content-type"), Some("application/json"));
+    let v = j.json();
+    assert_eq!(v["_embedded"]["_state"][0]["_type"], "rap-task-li");
+    assert_eq!(v["_embedded"]["_state"][1]["name"], "T_LOG");
+    let sys = c.get("/rw/system").text();
+    assert!(sys.contains("<span class=\"rwversionname\">6.08.01.00</span>"));
+    assert!(sys.contains("<span class=\"option\">689-1 Externally Guided Motion (EGM)</span>"));
+    assert!(
+        c.get("/ctrl")
+            .text()
+            .contains("<span class=\"ctrl-type\">Virtual Controller</span>")
+    );
+    let cfg = c.get("/rw/cfg/moc/mechanical_unit/instances").text();
+    assert!(cfg.contains("<li class=\"cfg-dt-instance-li\" title=\"ROB_1\">"));
+    assert!(cfg.contains(
+        "<li class=\"cfg-ia-t-li\" title=\"use_robot\"><span class=\"value\">ROB_1</span>"
+    ));
+    let mu = c
+        .get("/rw/motionsystem/mechunits/ROB_1?resource=static")
+        .text();
+    assert!(mu.contains("<span class=\"type\">TCPRobot</span>"));
+    let rt = c
+        .get("/rw/motionsystem/mechunits/ROB_1/robtarget?coordinate=Word&json=1")
+        .json();
+    assert_eq!(rt["_embedded"]["_state"][0]["_type"], "ms-robtargets");
+    assert_eq!(rt["_embedded"]["_state"][0]["eaxa"], "9E+09");
+    assert_eq!(rt["_embedded"]["_state"][0]["eax_a"], "9E+09");
+}
+
+#[test]
+fn writes_answer_204_and_reach_the_controller() {
+    let fake = FakeController::start("writes");
+    let srv = start(&fake, RwsOptions::default());
+    let mut c = login(&srv);
+    let r = c.post(
+        "/rw/iosystem/signals/Local/DRV_1/DO1?action=set",
+        "lvalue=1",
+    );
+    assert_eq!(r.status, 204);
+    let v = c.get("/rw/iosystem/signals/DO1?json=1").json();
+    assert_eq!(v["_embedded"]["_state"][0]["lvalue"], "1");
+    assert_eq!(
+        c.post(
+            "/rw/rapid/symbol/data/RAPID/T_ROB1/MainModule/counter?action=set",
+            "value=7"
+        )
+        .status,
+        204
+    );
+    let v = c
+        .get("/rw/rapid/symbol/data/RAPID/T_ROB1/counter?json=1")
+        .json();
+    assert_eq!(v["_embedded"]["_state"][0]["value"], "7");
+    assert_eq!(c.post("/rw/rapid/execution?action=start", "regain=continue&execmode=continue&cycle=once&condition=none&stopatbp=disabled&alltaskbytsp=false").status, 204);
+    let v = c.get("/rw/rapid/execution?json=1").json();
+    assert_eq!(v["_embedded"]["_state"][0]["ctrlexecstate"], "running");
+    assert_eq!(v["_embedded"]["_state"][0]["cycle"], "once");
+    // The file service: upload (201, then 200 on replace), list, read, delete.
+    let mut put = |body: &str| {
+        c.request("PUT", "/fileservice/$RAMDISK/a.txt", body.as_bytes())
+            .status
+    };
+    assert_eq!(put("one"), 201);
+    assert_eq!(put("two"), 200);
+    assert_eq!(
+        std::fs::read_to_string(fake.dir.join("ramdisk/a.txt")).unwrap(),
+        "two"
+    );
+    assert_eq!(c.get("/fileservice/$RAMDISK/a.txt").text(), "two");
+    let l = c.get("/fileservice/$RAMDISK?json=1").json();
+    assert_eq!(l["_embedded"]["_state"][0]["_title"], "a.txt");
+    assert_eq!(
+        c.request("DELETE", "/fileservice/$RAMDISK/a.txt", b"")
+            .status,
+        204
+    );
+    assert_eq!(c.get("/fileservice/$RAMDISK/a.txt").status, 404);
+}
+
+#[test]
+fn bad_input_gets_abb_errors_and_the_server_stays_up() {
+    let fake = FakeController::start("bad");
+    let srv = start(&fake, RwsOptions::default());
+    let mut c = login(&srv);
+    let code = |r: &rws_http::Resp| r.json()["_embedded"]["status"]["code"].as_i64().unwrap();
+    // Unknown resources: 404 with ABB's body in both representations.
+    let r = c.get("/rw/no/such?json=1");
+    assert_eq!(r.status, 404);
+    assert!(code(&r) < 0);
+    let r = c.get("/rw/no/such");
+    assert_eq!(r.status, 404);
+    assert!(
+        r.text().contains("<div class=\"status\">") && r.text().contains("<span class=\"code\">")
+    );
+    assert_eq!(c.get("/rw/iosystem/signals/NOPE?json=1").status, 404);
+    assert_eq!(
+        c.get("/rw/iosystem/signals/Other/DRV_1/DO1?json=1").status,
+        404
+    );
+    // Writes of the wrong type: 400.
+    for (path, form) in [
+        ("/rw/iosystem/signals/DO1?action=set&json=1", "lvalue=2"),
+        ("/rw/iosystem/signals/GO1?action=set&json=1", "lvalue=1.5"),
+        (
+            "/rw/panel/speedratio?action=setspeedratio&json=1",
+            "speed-ratio=150",
+        ),
+        (
+            "/rw/rapid/symbol/data/RAPID/T_ROB1/counter?action=set&json=1",
+            "value=abc",
+        ),
+        (
+            "/rw/rapid/symbol/data/RAPID/T_ROB1/arr?action=set&json=1",
+            "value=[1,2]",
+        ),
+        ("/rw/rapid/execution?action=start&json=1", "cycle=sometimes"),
+        ("/rw/rapid/execution?action=fly&json=1", ""),
+        (
+            "/rw/panel/ctrlstate?action=setctrlstate&json=1",
+            "ctrl-state=warp",
+        ),
+    ] {
+        let r = c.post(path, form);
+        assert_eq!(r.status, 400, "{path} {form}: {}", r.text());
+        assert!(code(&r) < 0);
+    }
+    // A constant is not writable: 403.
+    assert_eq!(
+        c.post(
+            "/rw/rapid/symbol/data/RAPID/T_ROB1/c?action=set&json=1",
+            "value=1"
+        )
+        .status,
+        403
+    );
+    // The file sandbox: no escape, no host paths.
+    for p in [
+        "/fileservice/$HOME/../../etc/passwd",
+        "/fileservice/$HOME/%2e%2e/x",
+        "/fileservice/etc/passwd",
+    ] {
+        let r = c.get(p);
+        assert!(r.status == 400 || r.status == 404, "{p}: {}", r.status);
+    }
+    // Huge bodies: 413 with ABB's body; the limit for uploads is larger but bounded too.
+    let big = "x=".to_string() + &"a".repeat(200 * 1024);
+    let r = c.post("/rw/panel/speedratio?action=setspeedratio&json=1", &big);
+    assert_eq!(r.status, 413);
+    assert!(code(&r) < 0);
+    let huge = vec![b'a'; 17 * 1024 * 1024];
+    assert_eq!(
+        c.request("PUT", "/fileservice/$HOME/big.bin", &huge).status,
+        413
+    );
+    assert!(!fake.dir.join("home/big.bin").exists());
+    // Malformed HTTP: answered (400) or closed, and the server keeps serving.
+    for junk in [
+        &b"GARBAGE\r\n\r\n"[..],
+        b"GET / HTTP/9.9\r\n\r\n",
+        b"\x00\x01\x02\x03\r\n\r\n",
+        b"GET /rw/system HTTP/1.1\r\nContent-Length: nope\r\n\r\n",
+    ] {
+        if let Ok(r) = raw(srv.local_addr(), junk) {
+            assert!(r.status >= 400, "{junk:?}");
+        }
+    }
+    let long_header = format!(
+        "GET /rw/system HTTP/1.1\r\nHost: x\r\nX-Long: {}\r\n\r\n",
+        "a".repeat(1 << 20)
+    );
+    if let Ok(r) = raw(srv.local_addr(), long_header.as_bytes()) {
+        assert!(r.status >= 400);
+    }
+    assert_eq!(c.get("/rw/panel/ctrlstate?json=1").status, 200);
+}
+
+#[test]
+fn a_thousand_sessions_stay_bounded() {
+    let fake = FakeController::start("sessions");
+    let opts = RwsOptions {
+        max_sessions: 50,
+        ..RwsOptions::default()
+    };
+    let srv = start(&fake, opts);
+    let first = login(&srv);
+    let addr = srv.local_addr();
+    let threads: Vec<_> = (0..8)
+        .map(|_| {
+            std::thread::spawn(move || {
+                let mut last = None;
+                for _ in 0..125 {
+                    let mut c = Client::new(addr, "Default User", "robotics");
+                    assert_eq!(c.get("/rw/panel/ctrlstate?json=1").status, 200);
+                    last = Some(c);
+                }
+                last.unwrap()
+            })
+        })
+        .collect();
+    for t in threads {
+        t.join().unwrap();
+    }
+    // The oldest session made room; the newest ones still work without credentials.
+    let mut first = first;
+    first.digest = false;
+    assert_eq!(first.get("/rw/panel/ctrlstate").status, 401);
+    let lasts: Vec<Client> = (0..10).map(|_| login(&srv)).collect();
+    for mut c in lasts {
+        c.digest = false;
+        assert_eq!(c.get("/rw/panel/ctrlstate").status, 200);
+    }
+}
+
+#[test]
+fn subscriptions_deliver_events_over_the_websocket_and_are_cleaned_up() {
+    use futures_util::StreamExt;
+    use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+
+    let fake = FakeController::start("subs");
+    let opts = RwsOptions {
+        max_subscriptions: 3,
+        subscription_unclaimed: Duration::from_millis(500),
+        ..RwsOptions::default()
+    };
+    let srv = start(&fake, opts);
+    let mut c = login(&srv);
+    let form = "resources=1&1=/rw/iosystem/signals/Local/DRV_1/DO1;state&1-p=1\
+                &resources=2&2=/rw/rapid/execution;ctrlexecstate&2-p=1\
+                &resources=3&3=/rw/rapid/symbol/data/RAPID/T_ROB1/counter;value&3-p=2";
+    let r = c.post("/subscription?json=1", form);
+    assert_eq!(r.status, 201, "{}", r.text());
+    let loc = r.header("location").unwrap().to_string();
+    assert!(loc.starts_with("ws://") && loc.contains("/poll/"), "{loc}");
+    assert!(
+        r.text()
+            .contains(&format!("<a href=\"{loc}\" rel=\"self\">"))
+    );
+    // Unknown resources and a VAR are refused.
+    assert_eq!(
+        c.post("/subscription?json=1", "resources=1&1=/rw/nothing&1-p=1")
+            .status,
+        400
+    );
+    assert_eq!(
+        c.post(
+            "/subscription?json=1",
+            "resources=1&1=/rw/rapid/symbol/data/RAPID/T_ROB1/v;value&1-p=1"
+        )
+        .status,
+        400
+    );
+    let cookie = format!("ABBCX={}", c.cookie("ABBCX").unwrap());
+    let rt = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    let frames = rt.block_on(async {
+        let mut req = loc.as_str().into_client_request().unwrap();
+        req.headers_mut().insert("Cookie", cookie.parse().unwrap());
+        req.headers_mut().insert(
+            "Sec-WebSocket-Protocol",
+            "robapi2_subscription".parse().unwrap(),
+        );
+        let (mut ws, resp) = tokio::time::timeout(
+            Duration::from_secs(5),
+            tokio_tungstenite::connect_async(req),
+        )
+        .await
+        .unwrap()
+        .unwrap();
+        assert_eq!(
+            resp.headers()
+                .get("sec-websocket-protocol")
+                .map(|v| v.to_str().unwrap()),
+            Some("robapi2_subscription")
+        );
+        fake.inject(Inject::Signal("DO1".into(), 1.0));
+        let mut c2 = Client {
+            digest: false,
+            ..Client::new(srv.local_addr(), "", "")
+        };
+        c2.cookies = c.cookies.clone();
+        tokio::task::spawn_blocking(move || {
+            assert_eq!(
+                c2.post("/rw/rapid/execution?action=start", "cycle=forever")
+                    .status,
+                204
+            );
+            assert_eq!(
+                c2.post(
+                    "/rw/rapid/symbol/data/RAPID/T_ROB1/counter?action=set",
+                    "value=3"
+                )
+                .status,
+                204
+            );
+        })
+        .await
+        .unwrap();
+        let mut got = Vec::new();
+        while got.len() < 3 {
+            let m = tokio::time::timeout(Duration::from_secs(5), ws.next())
+                .await
+                .unwrap()
+                .unwrap()
+                .unwrap();
+            got.push(m.into_text().unwrap().to_string());
+        }
+        got
+    });
+    let all = frames.join("\n");
+    assert!(all.contains("li class=\"ios-signalstate-ev\""), "{all}");
+    assert!(all.contains("<span class=\"lvalue\">1</span>"));
+    assert!(all.contains("<span class=\"ctrlexecstate\">running</span>"));
+    assert!(all.contains("<span class=\"value\">3</span>"));
+    // The cap on subscriptions; one left unclaimed is removed after the unclaimed time.
+    let ids: Vec<String> = (0..2)
+        .map(|_| {
+            let r = c.post("/subscription", "resources=1&1=/rw/panel/ctrlstate&1-p=0");
+            assert_eq!(r.status, 201);
+            r.header("location")
+                .unwrap()
+                .rsplit('/')
+                .next()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
+    let r = c.post(
+        "/subscription?json=1",
+        "resources=1&1=/rw/panel/ctrlstate&1-p=0",
+    );
+    assert_eq!(r.status, 503, "{}", r.text());
+    let t0 = Instant::now();
+    while t0.elapsed() < Duration::from_secs(5) {
+        std::thread::sleep(Duration::from_millis(300));
+        if c.post("/subscription", "resources=1&1=/rw/panel/ctrlstate&1-p=0")
+            .status
+            == 201
+        {
+            break;
+        }
+    }
+    assert_eq!(
+        c.request("DELETE", &format!("/subscription/{}", ids[0]), b"")
+            .status,
+        404,
+        "swept"
+    );
+    assert!(t0.elapsed() < Duration::from_secs(5));
+}
