@@ -175,7 +175,7 @@ pub struct Interp {
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
     late_values: Vec<Value>,
-    late_args: std::collections::HashMap<(usize, u32), call::LateArgs>,
+    late_args: rustc_hash::FxHashMap<(usize, u32), call::LateArgs>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -255,7 +255,7 @@ impl Interp {
             strbufs: Vec::new(),
             late_name: String::new(),
             late_values: Vec::new(),
-            late_args: std::collections::HashMap::new(),
+            late_args: rustc_hash::FxHashMap::default(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,

@@ -107,7 +107,8 @@ pub fn analyze_to_vec(
     if errors.iter().any(|e| !e.is_warning()) {
         return (None, errors);
     }
-    let mut procs_by_name: HashMap<String, Vec<RoutineId>> = HashMap::new();
+    let mut procs_by_name: HashMap<String, Vec<RoutineId>, rustc_hash::FxBuildHasher> =
+        HashMap::default();
     for (i, r) in c.routines.iter().enumerate() {
         procs_by_name
             .entry(r.name.to_ascii_uppercase())

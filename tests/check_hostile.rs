@@ -4,11 +4,9 @@
 //! only bound (speed is measured by benchmarks, not asserted here).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::Command;
 use std::time::Duration;
 
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::{procs, rapidvc};
 
 /// A module with `declared` globals `value<i>` and one routine assigning to `undeclared`
 /// misspelt names `valeu<i>` (each two edits from a declared name of the same length).
@@ -31,7 +29,7 @@ fn a_hundred_thousand_undeclared_names_check_in_bounded_time() {
     std::fs::create_dir_all(&dir).expect("scratch directory");
     let path = dir.join("broken.mod");
     std::fs::write(&path, broken_module(20_000, 100_000)).expect("write the program");
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rapidvc"));
+    let mut cmd = rapidvc!();
     cmd.args(["check", "--format", "json"]).arg(&path);
     let ended = procs::Proc::spawn(cmd).wait(Duration::from_secs(300));
     let _ = std::fs::remove_dir_all(&dir);
