@@ -14,8 +14,7 @@ use rapidvc::diag::Diagnostics;
 use rapidvc::parse::{self, ParseOptions};
 use rapidvc::source::SourceId;
 
-#[path = "../tests/support/gen_program.rs"]
-mod gen_program;
+use rapidvc_testkit::gen_program;
 
 fn bench(c: &mut Criterion) {
     let text = gen_program::program(4 << 20);

@@ -1,4 +1,4 @@
-//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices) and `MOC.cfg` (External Motion Interface Data).
+//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices), `MOC.cfg` (External Motion Interface Data) and `SYS.cfg` (read only for `ReadCfgData`).
 //!
 //! [`load_dir`] finds each domain's file case-insensitively in the directory (or in its
 //! `SYSPAR` subdirectory, the layout of a controller backup), adds it to the
@@ -40,6 +40,9 @@ pub struct Config {
     pub sio: Option<sio::SioConfig>,
     /// The motion profiles: the predefined `"default"` plus those of `MOC.cfg`.
     pub moc: moc::MocConfig,
+    /// Every CFG file read, as parsed (`EIO.cfg`, `SIO.cfg`, `MOC.cfg` and `SYS.cfg`): the
+    /// configuration database `ReadCfgData` reads (`system::cfg_data`).
+    pub files: Vec<cfg::CfgFile>,
 }
 
 /// How [`load_dir_with`] reads the files.
@@ -155,15 +158,30 @@ pub fn load_dir_with(
         });
         return Config::default();
     }
-    let eio = find_file(dir, "EIO.cfg")
-        .and_then(|p| load_file(&p, "EIO", sources, diags))
-        .map(|f| eio::read(&f, diags));
-    let sio = find_file(dir, "SIO.cfg")
-        .and_then(|p| load_file(&p, "SIO", sources, diags))
-        .map(|f| sio::read_with(&f, &options.sio, diags));
-    let moc = find_file(dir, "MOC.cfg")
-        .and_then(|p| load_file(&p, "MOC", sources, diags))
-        .map(|f| moc::read(&f, diags))
+    let load = |domain: &str, sources: &mut SourceMap, diags: &mut Diagnostics| {
+        find_file(dir, &format!("{domain}.cfg")).and_then(|p| load_file(&p, domain, sources, diags))
+    };
+    let eio_file = load("EIO", sources, diags);
+    let eio = eio_file.as_ref().map(|f| eio::read(f, diags));
+    let sio_file = load("SIO", sources, diags);
+    let sio = sio_file
+        .as_ref()
+        .map(|f| sio::read_with(f, &options.sio, diags));
+    let moc_file = load("MOC", sources, diags);
+    let moc = moc_file
+        .as_ref()
+        .map(|f| moc::read(f, diags))
         .unwrap_or_default();
-    Config { eio, sio, moc }
+    // SYS.cfg only feeds the configuration database.
+    let sys_file = load("SYS", sources, diags);
+    let files = [eio_file, sio_file, moc_file, sys_file]
+        .into_iter()
+        .flatten()
+        .collect();
+    Config {
+        eio,
+        sio,
+        moc,
+        files,
+    }
 }

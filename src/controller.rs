@@ -12,7 +12,9 @@ pub mod corrected_moves;
 pub mod cycle_hook;
 pub mod egm_controller;
 pub mod handle;
-pub mod mass_storage;
+/// The mass storage sandbox lives below the interpreter (RAPID's file instructions use it);
+/// services reach it here.
+pub use crate::mass_storage;
 pub mod monotonic_clock;
 mod motion_thread;
 pub mod period_stats;

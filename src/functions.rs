@@ -1,4 +1,4 @@
-//! Pure implementations of RAPID's predefined functions and value semantics behind the built-ins: number text, num/dnum arithmetic, strings and poses.
+//! Pure implementations of RAPID's predefined functions and value semantics behind the built-ins: number text, num/dnum arithmetic, bit operations, digit strings, strings and poses.
 //!
 //! Everything here works on plain Rust types (`f32` for `num`, `f64` for `dnum`, `&str`,
 //! `[f64; 3]` positions, `[f64; 4]` quaternions) and never touches interpreter state. The
@@ -9,10 +9,13 @@
 //! Decisions that are not settled by an ABB document are listed in the doc of each module and
 //! pinned by unit tests there.
 
+pub mod bits;
 mod decimal;
+pub mod digits;
 pub mod format;
 pub mod math;
 pub mod pose;
+pub mod raw_bytes;
 pub mod string;
 
 /// An error raised by a runtime-library function.
@@ -179,6 +182,9 @@ mod tests {
             include_str!("../stdlib/zone.sys"),
             include_str!("../stdlib/egm.sys"),
             include_str!("../stdlib/misc.sys"),
+            include_str!("../stdlib/system.sys"),
+            include_str!("../stdlib/files.sys"),
+            include_str!("../stdlib/socket.sys"),
         ];
         for f in files {
             assert!(f.starts_with("MODULE "), "{f}");
@@ -262,5 +268,98 @@ mod tests {
         assert_eq!(text("STR_LOWER"), string::STR_LOWER);
         assert_eq!(text("STR_WHITE"), string::STR_WHITE);
         assert_eq!(text("stEmpty"), "");
+
+        // ABB's symnum, opnum and opcalc numbers; rapidvc's for the others.
+        let system = decls(files[5]);
+        let value = |n: &str| {
+            system
+                .iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap_or_else(|| panic!("{n}"))
+        };
+        for (name, v) in [
+            ("OP_UNDEF", 0.0),
+            ("OP_AUTO", 1.0),
+            ("OP_MAN_PROG", 2.0),
+            ("OP_MAN_TEST", 3.0),
+            ("RUN_UNDEF", 0.0),
+            ("RUN_CONT_CYCLE", 1.0),
+            ("RUN_STEP_MOVE", 5.0),
+            ("LT", 1.0),
+            ("LTEQ", 2.0),
+            ("EQ", 3.0),
+            ("NOTEQ", 4.0),
+            ("GTEQ", 5.0),
+            ("GT", 6.0),
+            ("OpAdd", 1.0),
+            ("OpSub", 2.0),
+            ("OpMult", 3.0),
+            ("OpDiv", 4.0),
+            ("OpMod", 5.0),
+            ("LEVEL_NORMAL", 0.0),
+            ("LEVEL_TRAP", 1.0),
+            ("END_OF_LIST", -1.0),
+            ("ALL_DOMAINS", 1.0),
+            ("SYS_DOMAIN", 7.0),
+            ("HANDLER_NONE", 0.0),
+            ("HANDLER_ERR", 2.0),
+            ("HANDLER_UNDO", 3.0),
+            ("EVENT_NONE", 0.0),
+            ("EVENT_STEP", 7.0),
+        ] {
+            assert_eq!(value(name), v, "{name}");
+        }
+        for alias in [
+            "ALIAS num symnum;",
+            "ALIAS string stringdig;",
+            "ALIAS string errstr;",
+        ] {
+            assert!(files[5].contains(alias), "{alias}");
+        }
+        let disk = decls(files[6]);
+        let find = |n: &str| disk.iter().find(|d| d.2 == n).map(|d| d.3.clone()).unwrap();
+        assert_eq!(find("diskhome").as_str(), Some("HOME:"));
+        assert_eq!(find("disktemp").as_str(), Some("TEMP:"));
+        assert_eq!(find("diskram").as_str(), Some("RAMDISK:"));
+        assert_eq!(find("EOF_NUM").as_num(), Some(9.998e36));
+        assert_eq!(find("EOF_BIN").as_num(), Some(-1.0));
+        let wait_max = misc.iter().find(|d| d.2 == "WAIT_MAX").unwrap();
+        assert_eq!(wait_max.3.as_dnum(), Some(8_388_607.0));
+
+        // The socket states and integer formats: `interp/builtins/sockets.rs` and
+        // `raw_bytes` use these numbers.
+        let socket = decls(files[7]);
+        let value = |n: &str| {
+            socket
+                .iter()
+                .find(|d| d.2 == n)
+                .and_then(|d| d.3.as_dnum())
+                .unwrap()
+        };
+        for (i, name) in [
+            "SOCKET_CREATED",
+            "SOCKET_CONNECTED",
+            "SOCKET_BOUND",
+            "SOCKET_LISTENING",
+            "SOCKET_CLOSED",
+        ]
+        .iter()
+        .enumerate()
+        {
+            assert_eq!(value(name), i as f64 + 1.0, "{name}");
+        }
+        for (name, n) in [
+            ("USINT", 1.0),
+            ("UINT", 2.0),
+            ("UDINT", 4.0),
+            ("ULINT", 8.0),
+            ("SINT", -1.0),
+            ("INT", -2.0),
+            ("DINT", -4.0),
+            ("LINT", -8.0),
+        ] {
+            assert_eq!(value(name), n, "{name}");
+        }
     }
 }

@@ -36,8 +36,10 @@ mod call;
 mod compile;
 pub mod error;
 mod expr;
+pub mod files;
 pub mod host;
 mod interrupts;
+pub mod operator;
 pub mod pers;
 mod place;
 pub mod stdlib;
@@ -173,7 +175,7 @@ pub struct Interp {
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
     late_values: Vec<Value>,
-    late_args: std::collections::HashMap<(usize, u32), call::LateArgs>,
+    late_args: rustc_hash::FxHashMap<(usize, u32), call::LateArgs>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -182,6 +184,8 @@ pub struct Interp {
     next_booked: i32,
     retry_limit: u32,
     ints: Interrupts,
+    /// Where the dialogs' answers come from.
+    operator: operator::Operator,
     steps: u64,
     next_poll: u64,
     budget: Option<u64>,
@@ -193,6 +197,8 @@ pub struct Interp {
     /// ([`crate::ir::limits`]).
     module_values: u64,
     data_values: u64,
+    /// The mass storage and the files and directories the program has open.
+    files: files::Files,
 }
 
 impl std::fmt::Debug for Interp {
@@ -249,7 +255,7 @@ impl Interp {
             strbufs: Vec::new(),
             late_name: String::new(),
             late_values: Vec::new(),
-            late_args: std::collections::HashMap::new(),
+            late_args: rustc_hash::FxHashMap::default(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,
@@ -257,6 +263,7 @@ impl Interp {
             next_booked: errnum::BOOK_FIRST,
             retry_limit: 4,
             ints: Interrupts::default(),
+            operator: operator::Operator::nobody(),
             steps: 0,
             next_poll: u64::MAX,
             budget: None,
@@ -265,6 +272,7 @@ impl Interp {
             initialised: false,
             module_values,
             data_values: module_values,
+            files: files::Files::default(),
         }
     }
 
@@ -321,6 +329,25 @@ impl Interp {
     /// a clear error instead of overflowing the stack.
     pub fn set_stack_budget(&mut self, bytes: usize) {
         self.stack_budget = bytes;
+    }
+
+    /// The controller's mass storage the program's file instructions use (default: fresh
+    /// directories under the system's temporary directory, made on first use). Files still
+    /// open are closed.
+    pub fn set_mass_storage(&mut self, storage: Arc<crate::mass_storage::MassStorage>) {
+        self.files.close_all();
+        self.files = files::Files::new(storage);
+    }
+
+    /// Where the dialogs (`TPReadFK`, `UIMessageBox`, …) get their answers (default:
+    /// nobody answers, see [`operator`]).
+    pub fn set_operator(&mut self, op: operator::Operator) {
+        self.operator = op;
+    }
+
+    /// The dialogs' answer source (e.g. to warn about answers left unused).
+    pub fn operator(&self) -> &operator::Operator {
+        &self.operator
     }
 
     /// How many consecutive `RETRY`s of one statement are allowed (default 4).

@@ -45,7 +45,7 @@ pub struct Program {
     pub init_order: Vec<GlobalId>,
     /// Procedures reachable by name at run time (late binding, entry points): folded name →
     /// routines with that name (global ones and `LOCAL` ones of each module).
-    pub procs_by_name: HashMap<String, Vec<RoutineId>>,
+    pub procs_by_name: HashMap<String, Vec<RoutineId>, rustc_hash::FxBuildHasher>,
 }
 
 impl Program {

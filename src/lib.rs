@@ -8,8 +8,10 @@
 //! from source to a checked program) → `interp` (the interpreter) → `controller` (program
 //! execution, the cycle, clocks) over `motion` (sans-IO motion core), `egm` (the EGM protocol
 //! machines) and `wire` (sockets); `signals`, `config` and `output` (traces, plots, the view)
-//! beside them, `robot` (kinematics, pure math) and `functions` (RAPID's predefined
-//! functions) underneath. Only `cli` prints, reads the environment or exits.
+//! beside them, `system` (the controller's operating-system side RAPID reaches through the
+//! interpreter's host: calendar, system information, configuration data) below `interp`,
+//! `robot` (kinematics, pure math) and `functions` (RAPID's predefined functions)
+//! underneath. Only `cli` prints, reads the environment or exits.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -25,6 +27,7 @@ pub mod events;
 pub mod functions;
 pub mod interp;
 pub mod ir;
+pub mod mass_storage;
 pub mod motion;
 pub mod output;
 pub mod parse;
@@ -34,5 +37,6 @@ pub mod sema;
 pub mod services;
 pub mod signals;
 pub mod source;
+pub mod system;
 pub mod time;
 pub mod wire;

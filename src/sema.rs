@@ -12,10 +12,12 @@ mod consteval;
 pub mod error;
 mod expr;
 mod limits;
+pub mod options;
 mod order;
 mod predef;
 mod resolve;
 mod stmt;
+mod suggest;
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -105,7 +107,8 @@ pub fn analyze_to_vec(
     if errors.iter().any(|e| !e.is_warning()) {
         return (None, errors);
     }
-    let mut procs_by_name: HashMap<String, Vec<RoutineId>> = HashMap::new();
+    let mut procs_by_name: HashMap<String, Vec<RoutineId>, rustc_hash::FxBuildHasher> =
+        HashMap::default();
     for (i, r) in c.routines.iter().enumerate() {
         procs_by_name
             .entry(r.name.to_ascii_uppercase())
@@ -189,6 +192,8 @@ pub(crate) struct Checker<'a> {
     /// Keep the lowered routine bodies and data initialisers (false: only the errors are
     /// wanted, see [`check_only`]).
     keep_code: bool,
+    /// "Did you mean" for undeclared names, with its index and its bounded work.
+    suggester: suggest::Suggester,
 }
 
 impl<'a> Checker<'a> {
@@ -252,6 +257,7 @@ impl<'a> Checker<'a> {
             incomplete: Default::default(),
             module_values: 0,
             keep_code: true,
+            suggester: suggest::Suggester::default(),
         }
     }
 

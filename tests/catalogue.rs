@@ -14,8 +14,7 @@ use rapidvc::diag::codes::rapid_error_code;
 use rapidvc::events::{Effect, EventKind, Origin};
 use rapidvc::ir::errnum;
 
-#[path = "support/src_files.rs"]
-mod src_files;
+use rapidvc_testkit::src_files;
 use src_files::{root, rust_files};
 
 /// A doc comment's lines as one line of Markdown text, safe inside a table cell.

@@ -140,6 +140,74 @@ proptest! {
     }
 }
 
+/// Texts a user might pass as `--date`: well-formed dates (valid or not), near misses and
+/// garbage.
+fn date_text() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (
+            0u32..12000,
+            0u32..15,
+            0u32..34,
+            0u32..26,
+            0u32..62,
+            0u32..62
+        )
+            .prop_map(|(y, mo, d, h, mi, s)| format!(
+                "{y:04}-{mo:02}-{d:02} {h:02}:{mi:02}:{s:02}"
+            )),
+        (1960u32..9100, 1u32..13, 1u32..32).prop_map(|(y, mo, d)| format!("{y}-{mo}-{d}T00:00:00")),
+        prop::sample::select(vec![
+            "now",
+            "NOW",
+            "",
+            " ",
+            "today",
+            "2025-01-01",
+            "2025-01-01 00:00",
+            "2025-01-01 00:00:00.5",
+            "+2025-01-01 00:00:00",
+            "2025-01-01  00:00:00",
+            "1e9",
+            "2025/01/01 00:00:00",
+        ])
+        .prop_map(String::from),
+        "[-0-9: Tn]{0,22}",
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// `run --date` is accepted exactly when it is `now` or a real date and time of the years
+    /// 1970 to 9000 written `YYYY-MM-DD HH:MM:SS` (or with a `T`), and the run then starts its
+    /// calendar there.
+    #[test]
+    fn date_option_accepts_exactly_real_dates(value in date_text()) {
+        let t = value.trim();
+        let now = t.eq_ignore_ascii_case("now");
+        let parsed = chrono::NaiveDateTime::parse_from_str(&t.replacen('T', " ", 1), "%Y-%m-%d %H:%M:%S")
+            .ok()
+            .filter(|d| {
+                t.len() == 19
+                    && (1970..=9000).contains(&chrono::Datelike::year(d))
+                    && chrono::Timelike::nanosecond(d) < 1_000_000_000
+            });
+        match (parse(&["run", "x.mod"], "--date", &value), parsed) {
+            (Ok(cli), Some(d)) => {
+                let Command::Run(a) = &cli.command else { panic!("run") };
+                prop_assert_eq!(a.date.unwrap().start(), d);
+            }
+            (Ok(_), None) => prop_assert!(now, "--date={value} accepted"),
+            (Err(e), None) => {
+                let text = e.to_string();
+                prop_assert!(!now, "--date=now refused: {}", text);
+                prop_assert!(text.contains("--date") && text.contains("invalid value"), "{}", text);
+            }
+            (Err(e), Some(_)) => prop_assert!(false, "--date={value} refused: {e}"),
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // `--pers` files.
 

@@ -5,8 +5,8 @@
 //! by a time-out and killed when its guard is dropped.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::procs;
+use rapidvc_testkit::rapidvc;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -26,7 +26,7 @@ fn temp_dir(name: &str) -> PathBuf {
 
 /// `rapidvc ARGS…` in `dir`.
 fn rapidvc(dir: &Path, args: &[&str]) -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rapidvc"));
+    let mut cmd = rapidvc!();
     cmd.args(args)
         .current_dir(dir)
         .env("NO_COLOR", "1")

@@ -3,8 +3,8 @@
 //! in the source, old Mac line ends (a lone CR), and the call stack of a runaway recursion.
 //! Each runs the real binary on files written into a scratch directory.
 
+use rapidvc_testkit::rapidvc;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// A fresh scratch directory for one test, removed when dropped.
 struct Scratch(PathBuf);
@@ -31,7 +31,7 @@ fn scratch(test: &str) -> Scratch {
 
 /// Run rapidvc in `dir` (80 columns, no colour): exit code, stdout, stderr as bytes.
 fn rapidvc(dir: &Path, args: &[&str]) -> (i32, Vec<u8>, Vec<u8>) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .args(args)
         .current_dir(dir)
         .env("COLUMNS", "80")

@@ -3,8 +3,8 @@
 //! Every test ends by itself: loops are bounded in cycles and sockets have read time-outs.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/egm_loop.rs"]
-mod egm_loop;
+use rapidvc_testkit::egm_loop;
+use rapidvc_testkit::rapidvc;
 
 use std::net::{SocketAddr, UdpSocket};
 use std::sync::atomic::Ordering;
@@ -265,11 +265,11 @@ mod fixtures {
 mod cli {
     use super::*;
     use std::io::{BufRead, BufReader};
-    use std::process::{Command, Stdio};
+    use std::process::Stdio;
 
     #[test]
     fn rapidvc_sensor_answers_and_prints_statistics() {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        let mut child = rapidvc!()
             .args([
                 "sensor",
                 "--port",

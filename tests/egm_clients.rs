@@ -11,10 +11,9 @@
 //! ignored, and CI, which exports the variable, runs them with the same command. Every test ends by itself (bounded cycles, client time-outs, read time-outs).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/egm_loop.rs"]
-mod egm_loop;
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::egm_loop;
+use rapidvc_testkit::procs;
+use rapidvc_testkit::rapidvc;
 
 use std::io::{BufRead, BufReader};
 use std::net::SocketAddr;
@@ -301,7 +300,7 @@ mod through_rapidvc_run {
                 "60",
             ],
         );
-        let run = run_program(program, &device_args(port, lockstep), LIMIT);
+        let run = run_program(rapidvc!(), program, &device_args(port, lockstep), LIMIT);
         let c = client.wait(Duration::from_secs(30));
         let summary = c.stdout.lines().last().unwrap_or_default().to_string();
         check_run(&run, instruction, lockstep);
@@ -443,7 +442,7 @@ mod through_rapidvc_run {
         } else {
             (POSE_PROGRAM, "EGMRunPose")
         };
-        let run = run_program(program, &device_args(port, lockstep), LIMIT);
+        let run = run_program(rapidvc!(), program, &device_args(port, lockstep), LIMIT);
         let seen = sensor.join().unwrap();
         check_run(&run, instruction, lockstep);
         assert!(seen.problems.is_empty(), "{:?}", seen.problems);

@@ -388,13 +388,9 @@ mod builtin {
     }
 }
 
+/// The manual's tool with the payload of its path-correction example.
 fn t_fronius_cmt() -> ToolData {
     ToolData {
-        robhold: true,
-        tframe: pose_from_pos_quat(
-            [12.3313, -0.108707, 416.142],
-            [0.903899, -0.00320735, 0.427666, 0.00765917],
-        ),
         load: LoadData {
             mass: 2.6,
             cog: [-111.1, 24.6, 386.6],
@@ -403,6 +399,7 @@ fn t_fronius_cmt() -> ToolData {
             iy: 0.0,
             iz: 0.072,
         },
+        ..rapidvc_testkit::robot::t_fronius_cmt()
     }
 }
 

@@ -7,6 +7,7 @@
 #![allow(clippy::approx_constant)]
 
 use rapidvc::egm::geometry as guidance;
+use rapidvc_testkit::robot::{JOINT_TOL, POS_TOL, QUAT_TOL, assert_joints, t_fronius_cmt};
 
 use guidance::{
     Convergence, EgmFrameType, FeedbackMode, GuidanceError, PoseGuidance, PoseSetup, SignalSource,
@@ -15,33 +16,15 @@ use guidance::{
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 use rapidvc::robot::units::{pose_from_pos_quat, pose_to_pos_quat};
 use rapidvc::robot::{
-    ConfData, JointsDeg, KinError, LoadData, Pose, Robot, SingularityKind, ToolData, WobjData,
+    ConfData, JointsDeg, KinError, Pose, Robot, SingularityKind, ToolData, WobjData,
 };
 use rapidvc::signals::{SignalKind, SignalTable};
-
-/// Joint tolerance of docs/robot.md, "Acceptance facts".
-const JOINT_TOL: f64 = 0.01;
-/// Position tolerance (mm).
-const POS_TOL: f64 = 0.1;
-/// Quaternion tolerance per component, up to sign.
-const QUAT_TOL: f64 = 1e-4;
 
 const P20_ORIENT: [f64; 4] = [0.000494947, 0.662278, -0.749217, -0.00783173];
 const XYZ: [bool; 6] = [true, true, true, false, false, false];
 
 fn robot() -> Robot {
     Robot::default()
-}
-
-fn t_fronius_cmt() -> ToolData {
-    ToolData {
-        robhold: true,
-        tframe: pose_from_pos_quat(
-            [12.3313, -0.108707, 416.142],
-            [0.903899, -0.00320735, 0.427666, 0.00765917],
-        ),
-        load: LoadData::LOAD0,
-    }
 }
 
 fn wobj_at(uframe: Pose, oframe: Pose) -> WobjData {
@@ -66,16 +49,6 @@ fn p20_joints(r: &Robot) -> JointsDeg {
     let p20 = pose_from_pos_quat([150.0, 1320.0, 1140.0], P20_ORIENT);
     let flange = p20 * t_fronius_cmt().tframe.inverse();
     r.ik_conf(&flange, &ConfData::new(0, 0, -1, 0)).unwrap()
-}
-
-fn assert_joints(actual: &JointsDeg, expected: &JointsDeg, tol: f64) {
-    for i in 0..6 {
-        assert!(
-            (actual[i] - expected[i]).abs() <= tol,
-            "axis {}: {actual:?} vs {expected:?}",
-            i + 1
-        );
-    }
 }
 
 fn assert_pos(p: &Pose, expected: [f64; 3], tol: f64) {

@@ -6,12 +6,10 @@
     clippy::needless_range_loop
 )]
 
-#[path = "support/csv.rs"]
-mod csv;
-#[path = "support/egm_wire.rs"]
-mod egm_wire;
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::csv;
+use rapidvc_testkit::egm_wire;
+use rapidvc_testkit::procs;
+use rapidvc_testkit::rapidvc;
 
 use std::net::UdpSocket;
 use std::path::{Path, PathBuf};
@@ -303,7 +301,7 @@ fn run(program: &str, args: &[String]) -> Outcome {
         format!("--egm-log={}", log.display()),
     ];
     all.extend_from_slice(args);
-    let ended = procs::run_program(file.to_str().unwrap(), &all, LIMIT);
+    let ended = procs::run_program(rapidvc!(), file.to_str().unwrap(), &all, LIMIT);
     Outcome {
         trace: read_trace(&trace),
         log: read_log(&log),

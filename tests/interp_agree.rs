@@ -10,11 +10,10 @@
 //!   RETRY/TRYNEXT/RAISE/RETURN and simple (inlined) functions run in this process on both
 //!   engines and are compared in full.
 
+use rapidvc_testkit::rapidvc;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-#[path = "support/summary.rs"]
-mod summary;
+use rapidvc_testkit::summary;
 use summary::without_wall_time;
 
 fn root() -> PathBuf {
@@ -24,7 +23,7 @@ fn root() -> PathBuf {
 /// Run the command-line tool in `dir` on `engine`: (exit code, stdout, stderr without the
 /// wall-clock part of the motion summary).
 fn run_tool(dir: &Path, args: &[String], engine: &str) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .args(args)
         .current_dir(dir)
         .env("COLUMNS", "80")

@@ -15,8 +15,7 @@ use std::path::Path;
 use proc_macro2::{TokenStream, TokenTree};
 use syn::visit::{self, Visit};
 
-#[path = "support/src_files.rs"]
-mod src_files;
+use rapidvc_testkit::src_files;
 use src_files::{root, rust_files};
 
 /// A reference allowed against the layer rule until the change named in `why` removes it.

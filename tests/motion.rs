@@ -10,9 +10,7 @@ mod support {
         EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, MoveC, MoveJ, MoveL, RobTarget,
         SpeedData, SpeedOverride, ZoneData,
     };
-    use rapidvc::robot::{
-        ConfData, JointsDeg, Pose, Robot, ToolData, WobjData, pose_from_pos_quat,
-    };
+    use rapidvc::robot::{ConfData, JointsDeg, Robot, ToolData, pose_from_pos_quat};
 
     pub const DT: Duration = Duration::from_millis(4);
 
@@ -74,17 +72,7 @@ mod support {
     }
 
     pub fn args(id: u64, v: f64, z: f64, tool: ToolData) -> MoveArgs {
-        MoveArgs {
-            id,
-            source: None,
-            speed: SpeedData::v(v),
-            speed_override: None,
-            zone: zone(z),
-            tool,
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: Pose::identity(),
-        }
+        MoveArgs::new(id, SpeedData::v(v), zone(z), tool)
     }
 
     pub fn abs_j(id: u64, q: JointsDeg, v: f64, z: f64) -> MotionCommand {
@@ -1395,14 +1383,10 @@ mod config {
 }
 
 mod cli {
-    use std::process::Command;
 
     #[test]
     fn robots_lists_models_with_reach_and_limits() {
-        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
-            .arg("robots")
-            .output()
-            .unwrap();
+        let out = rapidvc_testkit::rapidvc!().arg("robots").output().unwrap();
         assert!(out.status.success());
         let text = String::from_utf8(out.stdout).unwrap();
         assert!(
@@ -1413,7 +1397,7 @@ mod cli {
             text.contains("IRB 120-3/0.58") && text.contains("IRB 6700-200/2.60"),
             "{text}"
         );
-        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        let out = rapidvc_testkit::rapidvc!()
             .args(["robots", "--robot", "irb120"])
             .output()
             .unwrap();
@@ -1422,7 +1406,7 @@ mod cli {
             text.contains("min (°)            -165     -110     -110     -160     -120     -400"),
             "{text}"
         );
-        let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+        let out = rapidvc_testkit::rapidvc!()
             .args(["robots", "--robot", "irb9999"])
             .output()
             .unwrap();

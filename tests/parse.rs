@@ -8,8 +8,7 @@ use rapidvc::diag::Diagnostics;
 use rapidvc::parse;
 use rapidvc::source::{SourceId, SourceMap};
 
-#[path = "support/gen_program.rs"]
-mod gen_program;
+use rapidvc_testkit::gen_program;
 
 /// Parse + structure check of `text`; the AST and the diagnostics rendered colour-free at 80
 /// columns.

@@ -1,10 +1,10 @@
 //! RAPID self-tests: `rapidvc test tests/rapid` must pass every `PROC test_*`.
 
-use std::process::Command;
+use rapidvc_testkit::rapidvc;
 
 #[test]
 fn rapid_self_tests_pass() {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .args(["test", "tests/rapid"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
@@ -35,7 +35,7 @@ fn failing_tests_are_reported_with_location() {
         "MODULE failing\n  PROC test_one()\n    Assert 1 = 2 \\Msg:=\"one is not two\";\n  ENDPROC\n  PROC test_two()\n  ENDPROC\nENDMODULE\n",
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("test")
         .arg(&file)
         .output()

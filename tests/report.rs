@@ -29,7 +29,7 @@ mod pipeline {
     use rapidvc::robot::command::{
         EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
     };
-    use rapidvc::robot::{Pose, Robot, ToolData, WobjData};
+    use rapidvc::robot::{Robot, ToolData};
 
     const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
 
@@ -75,17 +75,7 @@ mod pipeline {
 
     fn abs_j(id: u64, q: [f64; 6]) -> MotionCommand {
         MotionCommand::MoveAbsJ(MoveAbsJ {
-            args: MoveArgs {
-                id,
-                source: None,
-                speed: SpeedData::v(1000.0),
-                speed_override: None,
-                zone: ZoneData::FINE,
-                tool: ToolData::tool0(),
-                wobj: WobjData::wobj0(),
-                tload: None,
-                pdisp: Pose::identity(),
-            },
+            args: MoveArgs::new(id, SpeedData::v(1000.0), ZoneData::FINE, ToolData::tool0()),
             target: JointTarget {
                 robax: q,
                 extax: EXTAX_NONE,

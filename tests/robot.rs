@@ -10,27 +10,10 @@ use rapidvc::robot::{
     ConfData, JointsDeg, KinError, LoadData, Pose, Robot, SingularityKind, ToolData, WobjData,
     default_model, flange_target, model_by_name, models,
 };
-
-/// Joint tolerance of docs/robot.md, "Acceptance facts" (the expected values are rounded to 0.001°).
-const JOINT_TOL: f64 = 0.01;
-/// Position tolerance (mm).
-const POS_TOL: f64 = 0.1;
-/// Quaternion tolerance per component, up to sign.
-const QUAT_TOL: f64 = 1e-4;
+use rapidvc_testkit::robot::{JOINT_TOL, POS_TOL, QUAT_TOL, assert_joints, t_fronius_cmt};
 
 fn irb2600() -> Robot {
     Robot::new(default_model())
-}
-
-fn t_fronius_cmt() -> ToolData {
-    ToolData {
-        robhold: true,
-        tframe: pose_from_pos_quat(
-            [12.3313, -0.108707, 416.142],
-            [0.903899, -0.00320735, 0.427666, 0.00765917],
-        ),
-        load: LoadData::LOAD0,
-    }
 }
 
 fn p20() -> RobTarget {
@@ -48,16 +31,6 @@ fn p30() -> RobTarget {
         rot: [0.322151, -0.601023, 0.672381, 0.287914],
         robconf: ConfData::new(0, 0, -1, 0),
         extax: [9e9; 6],
-    }
-}
-
-fn assert_joints(actual: &JointsDeg, expected: &JointsDeg, tol: f64) {
-    for i in 0..6 {
-        assert!(
-            (actual[i] - expected[i]).abs() <= tol,
-            "axis {}: {actual:?} vs {expected:?}",
-            i + 1
-        );
     }
 }
 

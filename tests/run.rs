@@ -2,40 +2,18 @@
 //! leading `! args: …` line); exit code, TP output (stdout) and diagnostics (stderr) are
 //! compared with insta snapshots. Plus persistents across runs.
 
+use rapidvc_testkit::{procs, rapidvc};
 use std::path::Path;
-use std::process::Command;
 
 fn run_in(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
-        .args(args)
-        .current_dir(dir)
-        .env("COLUMNS", "80")
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run rapidvc");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    procs::output_in(rapidvc!(), dir, args, 80)
 }
 
 #[test]
 fn golden_runs() {
     insta::glob!("run/*.mod", |path| {
-        let text = std::fs::read_to_string(path).expect("read program");
-        let extra: Vec<&str> = text
-            .lines()
-            .find_map(|l| l.strip_prefix("! args:"))
-            .map(|a| a.split_whitespace().collect())
-            .unwrap_or_default();
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .expect("file name");
-        let mut args = vec!["run"];
-        args.extend(extra);
-        args.push(name);
+        let args = procs::golden_args(path);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let (code, stdout, stderr) = run_in(path.parent().expect("dir"), &args);
         insta::assert_snapshot!(format!(
             "exit code: {code}\n--- stdout\n{stdout}--- stderr\n{stderr}"
@@ -134,7 +112,7 @@ fn persistents_survive_between_runs() {
 /// guard against hangs, not a speed check: it is killed and the test fails if it does not).
 fn run_guarded(args: &[&str], secs: u64) -> (i32, String, String) {
     use std::io::Read;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let mut child = rapidvc!()
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("COLUMNS", "80")

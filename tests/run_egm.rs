@@ -1,10 +1,9 @@
 //! EGM through `rapidvc run`: the manual's examples with one command, the failure modes as RAPID sees them, `\NoWaitCond`/EGMWaitCond/EGMStop, position streams to a UDP receiver, trace and `--egm-log` output, and a hostile sensor (garbage datagrams, NaN and out-of-range references, a second sender, silence) against which the session survives or ends with ERR_UDPUC_COMM and the robot never leaves its limits. Every test ends by itself (bounded waits, children killed on drop).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/egm_wire.rs"]
-mod egm_wire;
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::egm_wire;
+use rapidvc_testkit::procs;
+use rapidvc_testkit::rapidvc;
 
 use std::net::{SocketAddr, UdpSocket};
 use std::time::{Duration, Instant};
@@ -70,7 +69,12 @@ mod manual {
 
     #[test]
     fn udpuc_example_runs_with_one_command_on_the_builtin_sensor() {
-        let e = run_program("programs/manual/position_guidance_udpuc.mod", &[], LIMIT);
+        let e = run_program(
+            rapidvc!(),
+            "programs/manual/position_guidance_udpuc.mod",
+            &[],
+            LIMIT,
+        );
         assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
         assert_eq!(
             tp_lines(&e),
@@ -91,7 +95,12 @@ mod manual {
     /// 143 s) — faithful; it must still finish, with every run converged.
     #[test]
     fn signals_example_runs_end_to_end() {
-        let e = run_program("programs/manual/position_guidance_signals.mod", &[], LIMIT);
+        let e = run_program(
+            rapidvc!(),
+            "programs/manual/position_guidance_signals.mod",
+            &[],
+            LIMIT,
+        );
         assert_eq!(e.code, Some(0), "{}\n{}", e.stdout, e.stderr);
         assert!(
             e.stderr
@@ -114,6 +123,7 @@ mod manual {
         let log = dir.join("e.csv");
         let plot = dir.join("p.svg");
         let e = run_program(
+            rapidvc!(),
             "programs/manual/position_guidance_udpuc.mod",
             &[
                 format!("--trace={}", trace.display()),
@@ -153,7 +163,7 @@ mod failures {
     fn entry(name: &str, extra: &[&str]) -> Ended {
         let mut a = args(&["--entry", name]);
         a.extend(args(extra));
-        run_program(PROGRAM, &a, LIMIT)
+        run_program(rapidvc!(), PROGRAM, &a, LIMIT)
     }
 
     fn fails_with(name: &str, text: &str) {
@@ -374,6 +384,7 @@ mod hostile {
         std::fs::create_dir_all(&dir).unwrap();
         let trace = dir.join("t.csv");
         let e = run_program(
+            rapidvc!(),
             "tests/run_egm/hostile.mod",
             &[
                 format!("--device=sensor=127.0.0.1:{port}"),
@@ -503,6 +514,7 @@ mod hostile {
             (messages, sent)
         });
         let e = run_program(
+            rapidvc!(),
             "tests/run_egm/silent_sensor.mod",
             &[format!("--device=sensor=127.0.0.1:{port}")],
             LIMIT,
@@ -544,6 +556,7 @@ mod hostile {
         let dead = UdpSocket::bind("127.0.0.1:0").unwrap();
         let port = dead.local_addr().unwrap().port();
         let e = run_program(
+            rapidvc!(),
             "tests/run_egm/silent_sensor.mod",
             &[
                 format!("--device=sensor=127.0.0.1:{port}"),

@@ -3,15 +3,13 @@
 //! without its wall-clock part), issue 4's acceptance checked from the trace, straight lines,
 //! deterministic traces, plots, the manual's program, real time and bad options.
 
-#[path = "support/csv.rs"]
-mod csv;
+use rapidvc_testkit::csv;
+use rapidvc_testkit::{procs, rapidvc};
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-#[path = "support/summary.rs"]
-mod summary;
 use csv::Csv;
+use rapidvc_testkit::summary;
 use summary::without_wall_time;
 
 fn root() -> PathBuf {
@@ -24,18 +22,7 @@ fn motion_dir() -> PathBuf {
 
 /// Run `rapidvc` in `dir`; (exit code, stdout, stderr).
 fn rapidvc(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
-        .args(args)
-        .current_dir(dir)
-        .env("COLUMNS", "100")
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run rapidvc");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    procs::output_in(rapidvc!(), dir, args, 100)
 }
 
 /// A scratch directory for one test.
@@ -98,19 +85,8 @@ fn assert_joints(got: [f64; 6], want: [f64; 6], tol: f64, what: &str) {
 #[test]
 fn golden_motion_runs() {
     insta::glob!("run/motion/*.mod", |path| {
-        let text = std::fs::read_to_string(path).expect("read program");
-        let extra: Vec<&str> = text
-            .lines()
-            .find_map(|l| l.strip_prefix("! args:"))
-            .map(|a| a.split_whitespace().collect())
-            .unwrap_or_default();
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .expect("file name");
-        let mut args = vec!["run"];
-        args.extend(extra);
-        args.push(name);
+        let args = procs::golden_args(path);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let (code, stdout, stderr) = rapidvc(path.parent().expect("dir"), &args);
         insta::assert_snapshot!(format!(
             "exit code: {code}\n--- stdout\n{stdout}--- stderr\n{}",

@@ -5,10 +5,9 @@
 //! time-out and killed when its guard is dropped.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/csv.rs"]
-mod csv;
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::csv;
+use rapidvc_testkit::procs;
+use rapidvc_testkit::rapidvc;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -133,6 +132,7 @@ mod golden {
     fn straight_seam_400_mm_at_v10_ends_on_the_corrected_path() {
         let trace_path = temp("straight.csv");
         let run = run_program(
+            rapidvc!(),
             STRAIGHT,
             &args(&[
                 "--device",
@@ -208,6 +208,7 @@ mod manual {
         let trace_path = temp("manual.csv");
         let plot_path = temp("manual.svg");
         let run = run_program(
+            rapidvc!(),
             MANUAL,
             &args(&[
                 "--trace",
@@ -251,7 +252,7 @@ mod errors {
     fn entry(name: &str, extra: &[&str]) -> Ended {
         let mut a = args(&["--entry", name]);
         a.extend(args(extra));
-        run_program(ERRORS, &a, LIMIT)
+        run_program(rapidvc!(), ERRORS, &a, LIMIT)
     }
 
     fn fails_with(run: &Ended, text: &str) {
@@ -325,6 +326,7 @@ mod errors {
     #[test]
     fn absurd_corrections_are_rejected_with_an_event() {
         let run = run_program(
+            rapidvc!(),
             STRAIGHT,
             &args(&["--device", "UCdevice=builtin:pathcorr:y=500,z=0"]),
             LIMIT,
@@ -402,6 +404,7 @@ mod udp {
         );
         let trace_path = temp("nan.csv");
         let run = run_program(
+            rapidvc!(),
             STRAIGHT,
             &args(&[
                 "--device",
@@ -429,6 +432,7 @@ mod udp {
         let silent = UdpSocket::bind("127.0.0.1:0").unwrap();
         let port = silent.local_addr().unwrap().port();
         let run = run_program(
+            rapidvc!(),
             ERRORS,
             &args(&[
                 "--entry",
@@ -479,6 +483,7 @@ mod clients {
         );
         let trace_path = temp(&format!("{client}.csv"));
         let run = run_program(
+            rapidvc!(),
             STRAIGHT,
             &args(&[
                 "--device",

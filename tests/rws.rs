@@ -7,10 +7,8 @@
 //! to the real controller. Every test ends by itself (read time-outs on every socket).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-#[path = "support/fake_controller.rs"]
-mod fake_controller;
-#[path = "support/rws_http.rs"]
-mod rws_http;
+use rapidvc_testkit::fake_controller;
+use rapidvc_testkit::rws_http;
 
 use std::time::{Duration, Instant};
 

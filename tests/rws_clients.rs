@@ -9,10 +9,8 @@
 //! own waits are bounded, and the child is killed after a time-out).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-#[path = "support/fake_controller.rs"]
-mod fake_controller;
-#[path = "support/procs.rs"]
-mod procs;
+use rapidvc_testkit::fake_controller;
+use rapidvc_testkit::procs;
 
 use std::process::Command;
 use std::time::Duration;

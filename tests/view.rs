@@ -4,11 +4,10 @@
 //! robot time, a ten-minute run stays small, and bad options fail before the run. The page
 //! in a real browser: tests/view_browser.rs; the live view: tests/view_live.rs.
 
-#[path = "support/view_page.rs"]
-mod view_page;
+use rapidvc_testkit::rapidvc;
+use rapidvc_testkit::view_page;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use rapidvc::output::view::record::{JOINT_TOL_DEG, TCP_TOL_MM};
 use serde_json::Value;
@@ -26,7 +25,7 @@ fn scratch(name: &str) -> PathBuf {
 
 /// `rapidvc run ARGS…`: (exit code, stdout, stderr).
 fn rapidvc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .args(args)
         .current_dir(root())
         .output()

@@ -10,12 +10,11 @@
 //! otherwise; `cargo test --test view_browser -- --include-ignored` runs them with the
 //! first `chromium` on `PATH`. Without a browser they fail with a message saying so.
 
-#[path = "support/view_page.rs"]
-mod view_page;
+use rapidvc_testkit::rapidvc;
+use rapidvc_testkit::view_page;
 
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -113,6 +112,14 @@ impl Drop for Page {
 }
 
 fn open(url: &str, name: &str) -> Page {
+    let page = blank(name);
+    page.go(url);
+    page
+}
+
+/// A browser started with an empty tab that collects console errors and exceptions (started
+/// before a live run, so the run does not end while a loaded machine starts Chromium).
+fn blank(name: &str) -> Page {
     let profile = out_dir().join(format!("profile-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&profile);
     let browser = launch(&profile);
@@ -155,27 +162,31 @@ fn open(url: &str, name: &str) -> Page {
     .expect("listener");
     tab.enable_runtime().expect("runtime events");
     tab.enable_log().expect("log events");
-    tab.navigate_to(url).expect("navigate");
-    tab.wait_until_navigated().expect("loaded");
-    let page = Page {
+    Page {
         _browser: browser,
         tab,
         problems,
         profile,
-    };
-    let deadline = Instant::now() + Duration::from_secs(60);
-    while page.eval("!!(window.rapidvc && window.rapidvc.ready)") != Value::Bool(true) {
-        assert!(
-            Instant::now() < deadline,
-            "{url} did not become ready: {:?}",
-            page.problems()
-        );
-        std::thread::sleep(Duration::from_millis(50));
     }
-    page
 }
 
 impl Page {
+    /// Navigates to `url` and waits until the view is ready.
+    fn go(&self, url: &str) {
+        let page = self;
+        page.tab.navigate_to(url).expect("navigate");
+        page.tab.wait_until_navigated().expect("loaded");
+        let deadline = Instant::now() + Duration::from_secs(60);
+        while page.eval("!!(window.rapidvc && window.rapidvc.ready)") != Value::Bool(true) {
+            assert!(
+                Instant::now() < deadline,
+                "{url} did not become ready: {:?}",
+                page.problems()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
     fn eval(&self, js: &str) -> Value {
         self.tab
             .evaluate(js, true)
@@ -224,7 +235,7 @@ fn replay(program: &Path, name: &str) -> (PathBuf, PathBuf, String) {
     let dir = out_dir();
     let page = dir.join(format!("{name}.html"));
     let trace = dir.join(format!("{name}.csv"));
-    let out = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let out = rapidvc!()
         .arg("run")
         .arg(program)
         .arg("--view")
@@ -380,7 +391,8 @@ fn ten_minute_run_replays_in_chromium() {
 fn live_page_follows_a_real_time_run_in_chromium() {
     let _one = one_browser();
     use std::io::{BufRead, BufReader, Read};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let p = blank("live");
+    let mut child = rapidvc!()
         .args(["run", "tests/view/live_run.mod", "--view-live"])
         .current_dir(root())
         .stdout(std::process::Stdio::null())
@@ -395,7 +407,7 @@ fn live_page_follows_a_real_time_run_in_chromium() {
         .and_then(|r| r.split_whitespace().next())
         .unwrap_or_else(|| panic!("no URL in {first:?}"))
         .to_string();
-    let p = open(&url, "live");
+    p.go(&url);
     // Rows arrive while the program runs; the page ends on the run's last state.
     let deadline = Instant::now() + Duration::from_secs(30);
     while p.eval("document.getElementById('status').textContent") != "live · run ended" {

@@ -3,10 +3,11 @@
 //! viewer that never reads cannot hold the run up. The router also works mounted under
 //! `/view` of another axum server.
 
+use rapidvc_testkit::rapidvc;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -62,7 +63,7 @@ async fn read_stream(url: &str) -> Vec<Value> {
 
 #[test]
 fn a_live_run_streams_the_robot_to_a_websocket_client() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rapidvc"))
+    let mut child = rapidvc!()
         .args(["run", "tests/view/live_run.mod", "--view-live"])
         .current_dir(root())
         .stdout(Stdio::piped())

@@ -17,7 +17,7 @@ use crate::output::TraceWriter;
 use crate::robot::command::{
     EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };
-use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
+use crate::robot::{ConfData, Robot, ToolData};
 use crate::time::RobotTime;
 
 use super::num;
@@ -158,17 +158,12 @@ impl Workload {
             u if u < 0.75 => fly_by(10.0),
             _ => fly_by(50.0),
         };
-        let args = MoveArgs {
-            id: self.id,
-            source: None,
-            speed: SpeedData::v(500.0 + 1500.0 * self.uniform()),
-            speed_override: None,
+        let args = MoveArgs::new(
+            self.id,
+            SpeedData::v(500.0 + 1500.0 * self.uniform()),
             zone,
-            tool: ToolData::tool0(),
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: Pose::identity(),
-        };
+            ToolData::tool0(),
+        );
         let target = RobTarget {
             trans: [x, y, z],
             rot,

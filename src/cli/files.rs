@@ -6,6 +6,17 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+/// `--home DIR`: an existing directory, kept as given (a relative one made absolute, so a
+/// program sees the same directory wherever the run changes to).
+pub fn home_dir(s: &str) -> Result<PathBuf, String> {
+    let p = PathBuf::from(s);
+    match std::fs::metadata(&p) {
+        Ok(m) if m.is_dir() => std::path::absolute(&p).map_err(|e| format!("{s}: {e}")),
+        Ok(_) => Err(format!("{s} is not a directory")),
+        Err(e) => Err(format!("{s}: {e} (the directory must exist)")),
+    }
+}
+
 /// A file of a run and what it is to the run (`--trace`, "the program file").
 #[derive(Clone, Debug)]
 pub struct Role<'a> {

@@ -168,6 +168,17 @@ pub fn sensor_ramp_time(s: &str) -> Result<f64, String> {
     SENSOR_RAMP_TIME.parse(s)
 }
 
+/// Value parser of `run --date`: the controller's calendar at the start of the run, written
+/// `YYYY-MM-DD HH:MM:SS` (years 1970 to 9000), or `now`: the host's local time when the
+/// command line is read. This is the only place rapidvc reads the host's calendar.
+pub fn start_date(s: &str) -> Result<crate::system::calendar::Calendar, String> {
+    use crate::system::calendar::Calendar;
+    if s.trim().eq_ignore_ascii_case("now") {
+        return Calendar::starting_at(chrono::Local::now().naive_local());
+    }
+    Calendar::parse(s).map_err(|e| format!("{e}, or `now`"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -185,5 +196,22 @@ mod tests {
         assert!(period_ms("0.09").is_err() && period_ms("101").is_err());
         assert!(sensor_frequency("0").is_ok() && sensor_frequency("-1").is_err());
         assert!(sensor_offset("-20").is_ok() && sensor_offset("1e7").is_err());
+    }
+
+    #[test]
+    fn start_dates() {
+        let c = start_date("2030-06-15 12:30:00").unwrap();
+        assert_eq!(c.date_text(0.0), "2030-06-15");
+        assert!(start_date(" NOW ").is_ok());
+        for bad in [
+            "",
+            "tomorrow",
+            "2030-06-15",
+            "2030-02-30 00:00:00",
+            "1900-01-01 00:00:00",
+        ] {
+            let e = start_date(bad).expect_err(bad);
+            assert!(e.ends_with("or `now`"), "{bad}: {e}");
+        }
     }
 }

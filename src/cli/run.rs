@@ -15,10 +15,11 @@ use std::time::Duration;
 
 use super::files::{self, Role};
 use super::robots::RobotArg;
-use super::{interrupt, num, progress_line, render};
+use super::{answers, interrupt, num, progress_line, render};
 use crate::program;
 
 pub mod egm_options;
+pub mod socket_clock;
 pub mod view_options;
 use crate::controller::egm_controller::EgmController;
 use crate::controller::{
@@ -26,6 +27,7 @@ use crate::controller::{
     RealtimeConfig, RunSummary, TickSink,
 };
 use crate::interp::{Interp, Outcome, Output, pers};
+use crate::mass_storage::MassStorage;
 use crate::motion::CoreConfig;
 use crate::output::{Feed, PlotRecorder, TraceColumns, TraceWriter};
 use crate::robot::{JointsDeg, Robot};
@@ -47,6 +49,11 @@ pub struct RunArgs {
     /// Configuration directory (EIO.cfg …); default: the directory of the first file.
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// The controller's HOME: directory (an existing directory; RAPID's file instructions
+    /// cannot leave it). Default: a fresh directory under the system's temporary directory,
+    /// made and printed when the program first uses the file system.
+    #[arg(long, value_name = "DIR", value_parser = files::home_dir)]
+    pub home: Option<PathBuf>,
     /// Persistents file: loaded at start when it exists, written at the end.
     #[arg(long)]
     pub pers: Option<PathBuf>,
@@ -57,6 +64,18 @@ pub struct RunArgs {
     /// Abort after this many executed statements (at least 1).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: Option<u64>,
+    /// The controller's date and time when the program starts (CDate, CTime, GetTime),
+    /// `YYYY-MM-DD HH:MM:SS` (default 2025-01-01 00:00:00), or `now` for the host's local time.
+    #[arg(long, value_name = "DATE", value_parser = num::start_date)]
+    pub date: Option<crate::system::calendar::Calendar>,
+    /// Let SaveCfgData write into the configuration directory (never over the files the run
+    /// read its configuration from).
+    #[arg(long)]
+    pub save_cfg: bool,
+    /// Answers to the operator dialogs (TPReadFK, UIMessageBox, …), one per line in order
+    /// (default: the terminal when stdin is one, else nobody answers).
+    #[arg(long, value_name = "FILE")]
+    pub answers: Option<PathBuf>,
     /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub cycles: u32,
@@ -160,14 +179,23 @@ pub fn run(args: RunArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let operator = match answers::read(args.answers.as_deref()) {
+        Ok(file) => answers::operator(file.as_ref(), None),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     if interrupted.load(Ordering::Relaxed) {
         eprintln!("interrupted before the program started");
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
+    let system = system_services(&args, &loaded);
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
+    let uses_sockets = socket_clock::uses_sockets(&prog);
     let view = match start_view(&args, &prog, &sources) {
         Ok(v) => v,
         Err(msg) => {
@@ -181,6 +209,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         &loaded.config,
         &signals,
         uses_egm.then_some(&prepared.devices),
+        uses_sockets,
         view.as_ref(),
     );
     let (ctl, egm_controller, egm_log_written, outside_inputs) = match started {
@@ -194,6 +223,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
+        .with_system(system)
         .with_max_time(args.max_time)
         .with_outside_inputs(outside_inputs)
         .with_stop_request(Arc::clone(&interrupted))
@@ -205,8 +235,10 @@ pub fn run(args: RunArgs) -> ExitCode {
             print_output(o);
         });
     let mut it = Interp::new(prog, &registry, Box::new(host));
+    it.set_mass_storage(Arc::new(MassStorage::new(args.home.clone())));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
+    it.set_operator(operator);
     // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
     it.set_stack_budget(6 << 20);
     let (mut code, drain) = match it.init() {
@@ -235,6 +267,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         progress_line::clear();
         eprintln!("error: {e}");
         code = ExitCode::from(1);
+    }
+    if code == ExitCode::SUCCESS
+        && let Some(w) = answers::unused_warning(it.operator())
+    {
+        progress_line::clear();
+        eprintln!("warning: {w}");
     }
     let was_interrupted = interrupted.load(Ordering::Relaxed);
     let announce =
@@ -290,6 +328,26 @@ pub fn run(args: RunArgs) -> ExitCode {
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
+}
+
+/// The controller's system side of this run: the calendar (`--date`), the robot (`--robot`),
+/// the configuration database of the configuration directory (which SaveCfgData may write
+/// into with `--save-cfg`).
+fn system_services(args: &RunArgs, loaded: &program::Loaded) -> crate::system::Services {
+    let mut cfg =
+        crate::system::cfg_data::CfgData::from_files(&loaded.config.files, &loaded.sources);
+    if args.save_cfg
+        && let Some(dir) = program::config_dir(args.config.as_deref(), &args.files)
+    {
+        cfg.allow_saving_in(dir);
+    }
+    crate::system::Services {
+        calendar: args.date.unwrap_or_default(),
+        info: crate::system::info::SystemInfo::default().with_robot(args.robot.0),
+        cfg,
+        texts: Default::default(),
+        sockets: Default::default(),
+    }
 }
 
 /// What is checked and read before anything runs.
@@ -469,13 +527,16 @@ fn start_view(
 /// and its EGM side (devices, clock choice, output feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
 /// external sensor takes part in a virtual (lockstep) run. `egm_devices`: the devices the
-/// program sets up, `None` when it uses no EGM.
+/// program sets up, `None` when it uses no EGM; `uses_sockets`: the program has sockets, so
+/// real processes take part (real time unless `--lockstep`).
+#[allow(clippy::too_many_arguments)]
 fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
     signals: &Arc<crate::signals::SignalTable>,
     egm_devices: Option<&egm_options::DeviceUse>,
+    uses_sockets: bool,
     view: Option<&view_options::ViewRun>,
 ) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
     let uses_egm = egm_devices.is_some();
@@ -543,14 +604,26 @@ fn start_controller(
     )?;
     let log_written = prepared.log_written;
     let outside_inputs = args.egm.lockstep && !prepared.external.is_empty();
-    let realtime =
-        args.realtime || args.view.needs_realtime() || (uses_egm && prepared.needs_realtime);
-    if uses_egm && prepared.needs_realtime && !args.realtime && !args.view.needs_realtime() {
+    let egm_realtime = uses_egm && prepared.needs_realtime;
+    let realtime = args.realtime
+        || args.view.needs_realtime()
+        || egm_realtime
+        || (uses_sockets && !args.egm.lockstep);
+    if egm_realtime && !args.realtime && !args.view.needs_realtime() {
         progress_line::clear();
         eprintln!(
             "note: EGM device {} is an external sensor: the clock runs in real time (--lockstep keeps virtual time)",
             prepared.external.join(", ")
         );
+    }
+    if uses_sockets
+        && let Some(note) = socket_clock::note(
+            args.realtime || args.view.needs_realtime() || egm_realtime,
+            args.egm.lockstep,
+        )
+    {
+        progress_line::clear();
+        eprintln!("{note}");
     }
     let hook: Option<Box<dyn CycleHook>> = Some(Box::new(prepared.hook));
     let egm_controller = prepared.controller;

@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex};
 use super::render;
 use crate::interp::{Interp, Outcome, Output, VirtualHost};
 use crate::ir::RoutineKind;
+use crate::mass_storage::MassStorage;
 use crate::program::{self, rapid_files};
 use crate::signals::SignalTable;
 
@@ -28,6 +29,16 @@ pub struct TestArgs {
     #[arg(long, value_name = "N", default_value_t = 50_000_000,
           value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
+    /// The controller's HOME: directory (an existing directory; RAPID's file instructions
+    /// cannot leave it). Default: a fresh directory under the system's temporary directory,
+    /// shared by the tests of one invocation, made when a test first uses
+    /// the file system and printed at the end.
+    #[arg(long, value_name = "DIR", value_parser = super::files::home_dir)]
+    pub home: Option<PathBuf>,
+    /// Answers to the operator dialogs: each test takes the `[test_name]` section of the
+    /// file, or the answers before the first section.
+    #[arg(long, value_name = "FILE")]
+    pub answers: Option<PathBuf>,
 }
 
 /// Run the tests.
@@ -39,8 +50,16 @@ pub fn run(args: TestArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let answers = match super::answers::read(args.answers.as_deref()) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let (mut passed, mut failed) = (0usize, 0usize);
     let mut broken = false;
+    let storage = Arc::new(MassStorage::new(args.home.clone()));
     for file in &files {
         let loaded = program::load(std::slice::from_ref(file), None);
         let Some(prog) = loaded.program.clone() else {
@@ -62,6 +81,15 @@ pub fn run(args: TestArgs) -> ExitCode {
             .map(|(i, r)| (r.name.clone(), crate::ir::RoutineId(i as u32)))
             .collect();
         tests.sort_by_key(|(_, rid)| prog.routine(*rid).span.start);
+        // The configuration database of the file's configuration directory, afresh for
+        // every test.
+        let system = crate::system::Services {
+            cfg: crate::system::cfg_data::CfgData::from_files(
+                &loaded.config.files,
+                &loaded.sources,
+            ),
+            ..Default::default()
+        };
         for (name, _) in tests {
             if let Some(f) = &args.filter
                 && !name.to_ascii_lowercase().contains(&f.to_ascii_lowercase())
@@ -74,6 +102,7 @@ pub fn run(args: TestArgs) -> ExitCode {
                 .unwrap_or_else(|_| SignalTable::with_builtins());
             let host = VirtualHost::new()
                 .with_signals(Arc::new(signals))
+                .with_system(system.clone())
                 .with_max_time(86_400.0)
                 .with_sink(move |o| {
                     if let (Output::TpWrite(s), Ok(mut v)) = (o, sink_tp.lock()) {
@@ -81,8 +110,10 @@ pub fn run(args: TestArgs) -> ExitCode {
                     }
                 });
             let mut it = Interp::new(prog.clone(), &loaded.registry, Box::new(host));
+            it.set_mass_storage(Arc::clone(&storage));
             it.set_budget(Some(args.max_steps));
             it.set_stack_budget(6 << 20);
+            it.set_operator(super::answers::operator(answers.as_ref(), Some(&name)));
             let res = it.init().and_then(|_| it.run(&name));
             let label = format!("test {} :: {name}", file.display());
             match res {
@@ -110,6 +141,13 @@ pub fn run(args: TestArgs) -> ExitCode {
                 }
             }
         }
+    }
+    if let Some(roots) = storage.made_roots() {
+        let shown: Vec<String> = roots
+            .iter()
+            .map(|(n, d)| format!("{n}: is {}", d.display()))
+            .collect();
+        eprintln!("note: mass storage: {}", shown.join(", "));
     }
     println!("{passed} passed, {failed} failed");
     if broken {

@@ -147,6 +147,12 @@ impl ControllerHost {
         self
     }
 
+    /// Use this system side (calendar, system information, configuration data).
+    pub fn with_system(mut self, system: crate::system::Services) -> Self {
+        self.io = self.io.with_system(system);
+        self
+    }
+
     /// Fail waits that would pass this robot time (seconds): nothing can end a wait for a
     /// signal nobody sets.
     pub fn with_max_time(mut self, seconds: f64) -> Self {
@@ -381,6 +387,10 @@ impl Host for ControllerHost {
         self.io.write_signal(name, value)
     }
 
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        self.io.signal_kind(name)
+    }
+
     fn motion_submit(&mut self, mut cmd: MotionCommand) -> Result<u64, HostError> {
         self.state_checked()?;
         self.last_id += 1;
@@ -509,6 +519,10 @@ impl Host for ControllerHost {
 
     fn egm(&mut self) -> Option<&mut dyn EgmHost> {
         if self.egm.is_some() { Some(self) } else { None }
+    }
+
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        self.io.system()
     }
 
     fn egm_path(&mut self) -> Option<&mut dyn crate::interp::host::EgmPathHost> {

@@ -169,6 +169,9 @@ codes! {
     SemaUnknownSignal = "rapidvc::sema::unknown_signal";
     /// A call to an instruction or function nobody declares.
     SemaUnsupported = "rapidvc::sema::unsupported";
+    /// An instruction, function or data type of a RobotWare option rapidvc does not have
+    /// (the option catalogue, `src/sema/options.txt`).
+    SemaNeedsOption = "rapidvc::sema::needs_option";
     /// A type name that does not exist.
     SemaUnknownType = "rapidvc::sema::unknown_type";
     /// A value of the wrong type.

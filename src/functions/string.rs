@@ -1,4 +1,4 @@
-//! RAPID string functions: StrLen, StrPart, StrFind, StrMatch, StrMemb, StrMap, StrToByte/ByteToStr, the character-set constants and the 80-character limit.
+//! RAPID string functions: StrLen, StrPart, StrFind, StrMatch, StrMemb, StrMap, StrOrder, StrToByte/ByteToStr, the character-set constants and the 80-character limit.
 //!
 //! Strings are Rust `String`s; one RAPID character is one `char` (RAPID strings are
 //! ISO-8859-1, so a controller never sees a character above U+00FF; a UTF-8 source file may
@@ -17,6 +17,10 @@
 //! * **StrMap**: a character found in `FromMap` (first occurrence) is replaced by the
 //!   character at the same position of `ToMap`; when `ToMap` is shorter than that position
 //!   the character is kept.
+//! * **StrOrder**: TRUE when `Str1` comes before `Str2` or equals it, comparing character
+//!   by character by their position in `Order` (its first occurrence); characters that
+//!   `Order` does not hold come after all that it holds, among themselves by character
+//!   code; a string that is the beginning of the other comes first.
 //! * **Character sets**: [`STR_DIGIT`], [`STR_UPPER`], [`STR_LOWER`] follow the RAPID
 //!   manual's ISO-8859-1 letter lists (upper case includes À–Þ except ×, lower case
 //!   à–þ except ÷, plus ß and ÿ), so `StrMap(s, STR_LOWER, STR_UPPER)` upper-cases
@@ -179,6 +183,24 @@ pub fn str_map(s: &str, from: &str, to: &str) -> String {
         .collect()
 }
 
+/// `StrOrder(Str1, Str2, Order)`: whether `a` comes before `b`, or equals it, in the
+/// character order `order`.
+pub fn str_order(a: &str, b: &str, order: &str) -> bool {
+    let n = order.chars().count() as u64;
+    let rank = |c: char| {
+        order
+            .chars()
+            .position(|o| o == c)
+            .map_or(n + u64::from(c), |i| i as u64)
+    };
+    for (x, y) in a.chars().zip(b.chars()) {
+        if x != y {
+            return rank(x) < rank(y);
+        }
+    }
+    a.chars().count() <= b.chars().count()
+}
+
 /// The text format of StrToByte and ByteToStr.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ByteFormat {
@@ -243,6 +265,23 @@ pub fn str_to_byte(s: &str, format: ByteFormat) -> RtResult<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn str_order() {
+        // ABB's StrOrder examples: "FIRST" before "SECOND", a string before its extension.
+        assert!(super::str_order("FIRST", "SECOND", STR_UPPER));
+        assert!(super::str_order("FIRST", "FIRSTB", STR_UPPER));
+        assert!(!super::str_order("FIRSTB", "FIRST", STR_UPPER));
+        assert!(super::str_order("SAME", "SAME", STR_UPPER));
+        // The order given decides, not the character codes.
+        assert!(super::str_order("B", "A", "BA"));
+        assert!(!super::str_order("A", "B", "BA"));
+        // Characters outside the order come after those in it, by code among themselves.
+        assert!(super::str_order("A", "a", STR_UPPER));
+        assert!(!super::str_order("a", "Z", STR_UPPER));
+        assert!(super::str_order("a", "b", STR_UPPER));
+        assert!(super::str_order("", "", ""));
+    }
 
     #[test]
     fn len_and_limit() {

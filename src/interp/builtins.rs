@@ -2,16 +2,25 @@
 //! [`crate::ir::sig`]) together with their implementations. The semantic pass checks calls
 //! against [`Registry::signatures`]; the interpreter calls [`Registry`] implementations.
 
+mod bits;
 mod clock;
 mod core;
+mod data_by_name;
+mod dialogs;
 mod egm;
 mod egm_path;
+mod files;
 mod interrupts;
 mod io;
+mod io_events;
 mod math;
+mod modules;
 mod motion;
 mod pose;
+mod rawbytes;
+mod sockets;
 mod string;
+mod system;
 mod text;
 
 pub(crate) use math::whole;
@@ -77,13 +86,22 @@ impl Registry {
         math::register(&mut r);
         string::register(&mut r);
         pose::register(&mut r);
+        bits::register(&mut r);
 
         clock::register(&mut r);
         io::register(&mut r);
+        dialogs::register(&mut r);
         interrupts::register(&mut r);
+        system::register(&mut r);
+        data_by_name::register(&mut r);
+        io_events::register(&mut r);
         motion::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
+        files::register(&mut r);
+        modules::register(&mut r);
+        rawbytes::register(&mut r);
+        sockets::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

@@ -488,7 +488,8 @@ impl Interp {
         };
         let mut key = std::mem::take(&mut self.late_name);
         key.clear();
-        key.extend(procname.chars().map(|c| c.to_ascii_uppercase()));
+        key.push_str(procname);
+        key.make_ascii_uppercase();
         let found = p.procs_by_name.get(key.as_str()).and_then(|list| {
             list.iter().copied().find(|&rid| {
                 let r = p.routine(rid);

@@ -27,6 +27,13 @@
 //! `ERR_OUTSIDE_REACH`) and a message that starts with the ABB event number and title, so
 //! `ERROR` handlers can take them and unhandled ones point at the instruction.
 //!
+//! # The system side
+//!
+//! [`Host::system`] gives the controller's operating-system services ([`Services`]: the
+//! task's sockets), plain Rust types of `crate::system` that the natives in
+//! `interp/builtins/sockets.rs` drive. [`VirtualHost`] owns one, and the controller's host
+//! hands out that of its `VirtualHost`.
+//!
 //! # EGM
 //!
 //! [`Host::egm`] gives the EGM capability ([`EgmHost`]), `None` by default (the EGM
@@ -203,6 +210,13 @@ pub trait Host {
     /// Set an output signal (or simulate an input).
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError>;
 
+    /// The kind of a configured signal (DI, DO, AI, …), `None` when there is no such
+    /// signal (`AliasIO`, `ValidIO`).
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        let _ = name;
+        None
+    }
+
     /// Plan and queue a move; blocks while the motion queue is full. The host numbers the
     /// moves: the `id` in `cmd` is replaced, and the new one is returned (for
     /// [`MotionWait::Done`]). A move that cannot be executed is refused here, before the
@@ -281,6 +295,13 @@ pub trait Host {
     fn egm_path(&mut self) -> Option<&mut dyn EgmPathHost> {
         None
     }
+
+    /// The controller's system side: calendar, system information, configuration database,
+    /// text tables (`crate::system`), when this host has one (the instructions and functions
+    /// that need it fail with "… is not supported by this controller" otherwise).
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        None
+    }
 }
 
 /// A callback that receives program output.
@@ -294,6 +315,7 @@ pub struct VirtualHost {
     outputs: Vec<Output>,
     sink: Option<OutputSink>,
     signals: Arc<SignalTable>,
+    system: crate::system::Services,
 }
 
 impl fmt::Debug for VirtualHost {
@@ -320,7 +342,15 @@ impl VirtualHost {
             outputs: Vec::new(),
             sink: None,
             signals: Arc::new(SignalTable::with_builtins()),
+            system: crate::system::Services::default(),
         }
+    }
+
+    /// Use this system side (calendar start, system information, configuration data); the
+    /// default has rapidvc's values and no configuration files.
+    pub fn with_system(mut self, system: crate::system::Services) -> Self {
+        self.system = system;
+        self
     }
 
     /// Use this signal table (shared with whoever else reads or drives the signals).
@@ -406,6 +436,15 @@ impl Host for VirtualHost {
     fn write_signal(&mut self, name: &str, value: f64) -> Result<(), HostError> {
         let id = self.signals.lookup_or_err(name).map_err(io_error)?;
         self.signals.set(id, value).map(drop).map_err(io_error)
+    }
+
+    fn system(&mut self) -> Option<&mut crate::system::Services> {
+        Some(&mut self.system)
+    }
+
+    fn signal_kind(&self, name: &str) -> Option<crate::signals::SignalKind> {
+        let id = self.signals.lookup(name)?;
+        self.signals.def(id).map(|d| d.kind)
     }
 }
 

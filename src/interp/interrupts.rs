@@ -34,8 +34,18 @@ pub(crate) struct Timer {
 pub(crate) enum Trigger {
     /// Digital: 1 = rising edge, 0 = falling edge, 2 = both.
     Edge(u8),
-    /// Analog: `aiotrigg` condition with high/low limits.
-    Analog { cond: u8, high: f64, low: f64 },
+    /// Analog: `aiotrigg` condition with high/low limits, the least change from the
+    /// stored reference value (`DeltaValue`) and its direction (1 `\DPos`, -1 `\DNeg`, 0
+    /// either).
+    Analog {
+        cond: u8,
+        high: f64,
+        low: f64,
+        delta: f64,
+        dir: i8,
+    },
+    /// Group: any change of the value.
+    Change,
 }
 
 /// A signal order (`ISignalDI`, `ISignalDO`, `ISignalAO`).
@@ -45,7 +55,42 @@ pub(crate) struct Watch {
     pub signal: String,
     pub trigger: Trigger,
     pub last: f64,
+    /// Analog: the reference value (at the order, then at each change beyond the delta
+    /// within the condition).
+    pub reference: f64,
     pub single: bool,
+}
+
+/// An `IPers` order: the persistent and its value at the last check.
+#[derive(Debug, Clone)]
+pub(crate) struct PersWatch {
+    pub intno: i32,
+    pub place: super::place::AbsPlace,
+    pub last: Value,
+}
+
+/// An event-log entry as `IError` traps see it (`GetTrapData`, `ReadErrData`).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct LogEvent {
+    /// `errdomain` (event number / 10000).
+    pub domain: i32,
+    /// The number within the domain.
+    pub number: i32,
+    /// `errtype`: 1 state, 2 warning, 3 error.
+    pub etype: i32,
+    pub title: String,
+    pub strs: Vec<String>,
+}
+
+/// An `IError` order.
+#[derive(Debug, Clone)]
+pub(crate) struct ErrorOrder {
+    pub intno: i32,
+    /// 0 (`COMMON_ERR`) = every domain.
+    pub domain: i32,
+    pub number: Option<i32>,
+    /// 0 (`TYPE_ALL`) = every type.
+    pub etype: i32,
 }
 
 /// Interrupt state of a task.
@@ -55,6 +100,12 @@ pub(crate) struct Interrupts {
     connected: HashMap<i32, RoutineId>,
     pub timers: Vec<Timer>,
     pub watches: Vec<Watch>,
+    pub pers_watches: Vec<PersWatch>,
+    pub error_orders: Vec<ErrorOrder>,
+    /// Events behind queued `IError` interrupts, in arrival order.
+    events: VecDeque<(i32, LogEvent)>,
+    /// The event of the running `IError` trap (`GetTrapData`).
+    pub trap_event: Option<LogEvent>,
     pending: VecDeque<i32>,
     /// IDisable in effect.
     pub disabled: bool,
@@ -66,10 +117,16 @@ pub(crate) struct Interrupts {
 }
 
 impl Interrupts {
+    /// Is a TRAP routine running (`ExecLevel`)?
+    pub fn in_trap(&self) -> bool {
+        self.in_trap
+    }
+
     /// Anything that needs checking between statements?
     pub fn armed(&self) -> bool {
         !self.timers.is_empty()
             || !self.watches.is_empty()
+            || !self.pers_watches.is_empty()
             || !self.pending.is_empty()
             || !self.delayed.is_empty()
     }
@@ -92,6 +149,9 @@ impl Interrupts {
     pub fn delete(&mut self, no: i32) -> bool {
         self.timers.retain(|t| t.intno != no);
         self.watches.retain(|w| w.intno != no);
+        self.pers_watches.retain(|w| w.intno != no);
+        self.error_orders.retain(|w| w.intno != no);
+        self.events.retain(|e| e.0 != no);
         self.pending.retain(|&n| n != no);
         self.asleep.remove(&no);
         self.connected.remove(&no).is_some()
@@ -207,10 +267,71 @@ impl Interp {
             signal: signal.to_string(),
             trigger,
             last,
+            reference: last,
             single,
         });
         self.update_poll();
         Ok(())
+    }
+
+    /// Order an interrupt on every change of a persistent (`IPers`).
+    pub(crate) fn order_pers(
+        &mut self,
+        no: i32,
+        place: super::place::AbsPlace,
+        span: Span,
+    ) -> Exec<()> {
+        self.check_intno(no, span)?;
+        let last = self
+            .abs_get(&place)
+            .map_err(|e| self.walk_err(e, span))?
+            .clone();
+        self.ints.watches.retain(|w| w.intno != no);
+        self.ints.pers_watches.retain(|w| w.intno != no);
+        self.ints.pers_watches.push(PersWatch {
+            intno: no,
+            place,
+            last,
+        });
+        self.update_poll();
+        Ok(())
+    }
+
+    /// Order an interrupt on event-log entries (`IError`).
+    pub(crate) fn order_error(&mut self, order: ErrorOrder, span: Span) -> Exec<()> {
+        self.check_intno(order.intno, span)?;
+        self.ints.error_orders.retain(|o| o.intno != order.intno);
+        self.ints.error_orders.push(order);
+        Ok(())
+    }
+
+    /// An entry of the event log: queues the `IError` interrupts it matches (they run at
+    /// the next check, between statements or during a wait).
+    pub(crate) fn log_event(&mut self, ev: LogEvent) {
+        let hits: Vec<i32> = self
+            .ints
+            .error_orders
+            .iter()
+            .filter(|o| {
+                (o.domain == 0 || o.domain == ev.domain)
+                    && (o.etype == 0 || o.etype == ev.etype)
+                    && o.number.is_none_or(|n| n == ev.number)
+            })
+            .map(|o| o.intno)
+            .collect();
+        for no in hits {
+            if self.ints.asleep.contains(&no) {
+                continue;
+            }
+            if self.ints.queue(no) {
+                self.ints.events.push_back((no, ev.clone()));
+            } else {
+                self.host.output(super::Output::Event(format!(
+                    "interrupt queue full: interrupt {no} was lost"
+                )));
+            }
+        }
+        self.update_poll();
     }
 
     /// Delete an interrupt (`IDelete`).
@@ -281,12 +402,29 @@ impl Interp {
                             _ => rising || falling,
                         }
                     }
-                    Trigger::Analog { cond, high, low } => {
-                        v != w.last
-                            && (cond == 7
-                                || (analog_hit(cond, high, low, v)
-                                    && !analog_hit(cond, high, low, w.last)))
+                    Trigger::Analog {
+                        cond,
+                        high,
+                        low,
+                        delta,
+                        dir,
+                    } => {
+                        // A new reference value is stored whenever the signal is within the
+                        // condition and differs from the reference by more than the delta;
+                        // it interrupts when that difference has the ordered direction.
+                        let d = v - w.reference;
+                        if analog_hit(cond, high, low, v) && d.abs() > delta {
+                            w.reference = v;
+                            match dir {
+                                1 => d > 0.0,
+                                -1 => d < 0.0,
+                                _ => true,
+                            }
+                        } else {
+                            false
+                        }
                     }
+                    Trigger::Change => v != w.last,
                 };
                 w.last = v;
                 if hit {
@@ -299,6 +437,18 @@ impl Interp {
             if let Some(e) = err {
                 return Err(self.host_error(e, span));
             }
+        }
+        if !self.ints.pers_watches.is_empty() {
+            let mut watches = std::mem::take(&mut self.ints.pers_watches);
+            for w in watches.iter_mut() {
+                if let Ok(v) = self.abs_get(&w.place)
+                    && !super::value::values_equal(v, &w.last)
+                {
+                    w.last = v.clone();
+                    fired.push(w.intno);
+                }
+            }
+            self.ints.pers_watches = watches;
         }
         for no in fired {
             if !self.ints.queue(no) {
@@ -322,8 +472,16 @@ impl Interp {
         self.ints.in_trap = true;
         let saved = self.intno;
         self.intno = no;
+        self.ints.trap_event = self
+            .ints
+            .events
+            .iter()
+            .position(|e| e.0 == no)
+            .and_then(|i| self.ints.events.remove(i))
+            .map(|e| e.1);
         let res = self.call_routine(p, trap, &[], span);
         self.intno = saved;
+        self.ints.trap_event = None;
         self.ints.in_trap = false;
         match res {
             Ok(_) => Ok(()),

@@ -9,4 +9,14 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("<stdlib>/zone.sys", include_str!("../../stdlib/zone.sys")),
     ("<stdlib>/egm.sys", include_str!("../../stdlib/egm.sys")),
     ("<stdlib>/misc.sys", include_str!("../../stdlib/misc.sys")),
+    (
+        "<stdlib>/system.sys",
+        include_str!("../../stdlib/system.sys"),
+    ),
+    ("<stdlib>/files.sys", include_str!("../../stdlib/files.sys")),
+    (
+        "<stdlib>/socket.sys",
+        include_str!("../../stdlib/socket.sys"),
+    ),
+    ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];

@@ -30,6 +30,19 @@ pub enum Value {
     Absent,
 }
 
+/// The shared text of one ASCII character `b` (`b` < 128).
+fn ascii_char(b: u8) -> Arc<str> {
+    static CHARS: std::sync::LazyLock<Box<[Arc<str>]>> = std::sync::LazyLock::new(|| {
+        (0u8..128)
+            .map(|b| Arc::from(char::from(b).to_string().as_str()))
+            .collect()
+    });
+    match CHARS.get(b as usize) {
+        Some(s) => s.clone(),
+        None => Arc::from(char::from(b).to_string().as_str()),
+    }
+}
+
 /// An array of 1–3 dimensions, stored row-major.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Array {
@@ -65,9 +78,14 @@ impl Array {
 }
 
 impl Value {
-    /// A string value (the caller has checked the length).
+    /// A string value (the caller has checked the length). Texts of one ASCII character
+    /// share one allocation each (programs that walk a string character by character make
+    /// many of them).
     pub fn str(s: &str) -> Value {
-        Value::Str(Arc::from(s))
+        match s.as_bytes() {
+            [b] if b.is_ascii() => Value::Str(ascii_char(*b)),
+            _ => Value::Str(Arc::from(s)),
+        }
     }
 
     /// The number, for num values.

@@ -15,6 +15,7 @@
 //! | 1501–1599 | I/O signals |
 //! | 1601–1699 | sockets and files |
 //! | 1701–1799 | EGM (`ERR_UDPUC_COMM`) |
+//! | 1801–1899 | system: configuration data and text tables (`ERR_CFG_NOTFND`, …) |
 //!
 //! Numbers never change once published; new constants take the next free number of their
 //! group.
@@ -63,6 +64,9 @@ errs! {
     ERR_INT_NOTVAL = 1013, "Not a valid integer";
     ERR_INT_MAXVAL = 1014, "Integer value outside the allowed range";
     ERR_DATA_LIMIT = 1015, "Too much data in the task (module data and running routines)";
+    ERR_CALC_NEG = 1016, "Negative result of a digit-string calculation";
+    ERR_CALC_OVERFLOW = 1017, "Result of a digit-string calculation too large";
+    ERR_CALC_DIVZERO = 1018, "Division by zero in a digit-string calculation";
     ERR_NOTPRES = 1101, "Optional parameter not present";
     ERR_FNCNORET = 1102, "Function ended without RETURN";
     ERR_CALLPROC = 1103, "Procedure call error";
@@ -86,6 +90,10 @@ errs! {
     ERR_TP_DIBREAK = 1303, "TP read interrupted by a digital input";
     ERR_TP_MAXTIME = 1304, "TP read timed out";
     ERR_TP_NO_CLIENT = 1305, "No teach pendant client";
+    ERR_TP_PERSBOOLBREAK = 1306, "TP read interrupted by a persistent bool";
+    ERR_UI_INITVALUE = 1307, "Dialog initial value outside its limits";
+    ERR_UI_MAXMIN = 1308, "Dialog minimum value greater than its maximum";
+    ERR_UI_NOTINT = 1309, "Dialog value is not an integer";
     ERR_ROBLIMIT = 1401, "Robot position outside its limits";
     ERR_OUTSIDE_REACH = 1402, "Position outside reach";
     ERR_WHLSEARCH = 1403, "No search hit";
@@ -105,7 +113,28 @@ errs! {
     ERR_FILNOTFND = 1605, "File not found";
     ERR_FILESIZE = 1606, "File too large";
     ERR_RANYBIN_EOF = 1607, "End of file";
+    ERR_FILEEXIST = 1608, "File already exists";
+    ERR_RANYBIN_CHK = 1609, "Check sum error in binary data";
+    ERR_RCVDATA = 1610, "Data read is not a number";
+    // The socket errors beyond the first two take 1650 on (1603-1649: files).
+    ERR_SOCK_ADDR_INVALID = 1650, "Socket address not valid (not an IPv4 address of a reachable host)";
+    ERR_SOCK_ADDR_INUSE = 1651, "Socket address and port already in use";
+    ERR_SOCK_IS_BOUND = 1652, "Socket already bound";
+    ERR_SOCK_IS_CONN = 1653, "Socket already connected";
+    ERR_SOCK_NET_UNREACH = 1654, "Network or host unreachable";
+    ERR_SOCK_NOT_BOUND = 1655, "Socket not bound (or not listening)";
+    ERR_SOCK_NOT_CONN = 1656, "Socket not connected";
+    ERR_SOCK_UNSPEC = 1657, "Socket error";
     ERR_UDPUC_COMM = 1701, "UdpUc communication error (no data from the device)";
+    ERR_CFG_NOTFND = 1801, "Configuration data not found";
+    ERR_CFG_ILLTYPE = 1802, "Configuration data of another type";
+    ERR_CFG_LIMIT = 1803, "Configuration data limits violated";
+    ERR_CFG_OUTOFBOUNDS = 1804, "Configuration list number out of bounds";
+    ERR_CFG_WRITEFILE = 1805, "Configuration file cannot be written";
+    ERR_CFG_ILL_DOMAIN = 1806, "Configuration domain not valid or not in use";
+    ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
+    ERR_SYMBOL_TYPE = 1808, "Data object of another type";
+    ERR_INVDIM = 1809, "Data object of other dimensions";
 }
 
 /// The constant with this (case-insensitive) name.

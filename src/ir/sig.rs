@@ -5,7 +5,8 @@
 //! Parameter syntax: `[\] [INOUT|VAR|PERS|REF] type name [{*[,*[,*]]}]`, with `|` between
 //! mutually exclusive optional alternatives. `REF` is a read-only reference used by natives
 //! that inspect big values without copying them (`Dim`). Type `anytype` accepts any value
-//! type, `anynum` accepts `num` or `dnum`.
+//! type, `anydata` any value type or array of one, `anynum` accepts `num` or `dnum`,
+//! `anysignal` any I/O signal or a string naming one.
 
 use std::fmt;
 
@@ -37,6 +38,10 @@ impl SigType {
     /// `anytype`: any value type.
     pub fn is_any(&self) -> bool {
         self.name.eq_ignore_ascii_case("anytype")
+    }
+    /// `anydata`: any value type or an array of one (`GetDataVal`, `SetDataVal`).
+    pub fn is_any_data(&self) -> bool {
+        self.name.eq_ignore_ascii_case("anydata")
     }
     /// `anynum`: num or dnum.
     pub fn is_anynum(&self) -> bool {

@@ -94,7 +94,7 @@ mod tests {
     use crate::robot::command::{
         EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
     };
-    use crate::robot::{ConfData, Robot, ToolData, WobjData};
+    use crate::robot::{ConfData, Robot, ToolData};
     use std::time::Duration;
 
     const DT: Duration = Duration::from_millis(4);
@@ -162,17 +162,7 @@ mod tests {
     }
 
     fn args(id: u64, v: f64, zone: ZoneData) -> MoveArgs {
-        MoveArgs {
-            id,
-            source: None,
-            speed: SpeedData::v(v),
-            speed_override: None,
-            zone,
-            tool: ToolData::tool0(),
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: crate::robot::Pose::identity(),
-        }
+        MoveArgs::new(id, SpeedData::v(v), zone, ToolData::tool0())
     }
 
     fn z5() -> ZoneData {

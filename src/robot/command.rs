@@ -133,6 +133,25 @@ pub struct MoveArgs {
     pub pdisp: Pose,
 }
 
+impl MoveArgs {
+    /// The arguments of move `id` at `speed` with `zone` and `tool`, as a move instruction
+    /// without optional arguments has them: no `\V`/`\T`, `wobj0`, no `\TLoad`, no program
+    /// displacement, no source span.
+    pub fn new(id: u64, speed: SpeedData, zone: ZoneData, tool: ToolData) -> Self {
+        MoveArgs {
+            id,
+            source: None,
+            speed,
+            speed_override: None,
+            zone,
+            tool,
+            wobj: WobjData::wobj0(),
+            tload: None,
+            pdisp: Pose::identity(),
+        }
+    }
+}
+
 /// `MoveAbsJ ToJointPos [\NoEOffs], Speed, Zone, Tool [\WObj]`: joint interpolation to axis
 /// values, no IK and no configuration check.
 #[derive(Clone, Debug, PartialEq)]
@@ -247,15 +266,8 @@ mod tests {
         assert_eq!(t.pose().translation.vector.z, 3.0);
         let cmd = MotionCommand::MoveJ(MoveJ {
             args: MoveArgs {
-                id: 7,
-                source: None,
-                speed: v1000,
                 speed_override: Some(SpeedOverride::T(2.0)),
-                zone: ZoneData::FINE,
-                tool: ToolData::tool0(),
-                wobj: WobjData::wobj0(),
-                tload: None,
-                pdisp: Pose::identity(),
+                ..MoveArgs::new(7, v1000, ZoneData::FINE, ToolData::tool0())
             },
             target: t,
             conf_check: true,

@@ -14,13 +14,20 @@ use crate::source::Span;
 pub(crate) enum PTy {
     /// A concrete type.
     T(Ty),
-    /// Any value type (arrays of rank `rank` when it is not 0).
+    /// Any value type (arrays of rank `rank` when it is not 0; [`ANY_RANK`]: scalars and
+    /// arrays of any rank).
     Any(u8),
     /// num or dnum.
     AnyNum,
+    /// An I/O signal of any kind (`signaldi` … `signalgo`) or a string naming one
+    /// (`AliasIO`, `ValidIO`).
+    AnySignal,
     /// A switch.
     Switch,
 }
+
+/// The rank of `PTy::Any` that accepts scalars and arrays alike (`anydata`).
+pub(crate) const ANY_RANK: u8 = u8::MAX;
 
 /// Access mode as the argument checks see it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,8 +70,12 @@ impl Checker<'_> {
                 PTy::Switch
             } else if p.ty.is_any() {
                 PTy::Any(p.ty.rank)
+            } else if p.ty.is_any_data() {
+                PTy::Any(ANY_RANK)
             } else if p.ty.is_anynum() {
                 PTy::AnyNum
+            } else if p.ty.name.eq_ignore_ascii_case("anysignal") {
+                PTy::AnySignal
             } else {
                 match self.types.lookup(&p.ty.name) {
                     Some(id) => PTy::T(Ty {
@@ -448,12 +459,21 @@ impl Checker<'_> {
     fn check_exact(&mut self, p: &PView, t: Ty, ctx: &str, span: Span) -> Option<()> {
         let (ok, expected) = match p.ty {
             PTy::T(want) => (want == t, self.ty_name(want)),
+            PTy::Any(ANY_RANK) => (
+                self.types.is_value(t.base),
+                "a value or an array of values".to_string(),
+            ),
             PTy::Any(0) => (
                 t.rank == 0 && self.types.is_value(t.base),
                 "a value (not an array)".to_string(),
             ),
             PTy::Any(_) => (t.rank > 0, "an array".to_string()),
             PTy::AnyNum => (t == Ty::NUM || t == Ty::DNUM, "num or dnum".to_string()),
+            PTy::AnySignal => (
+                t.rank == 0
+                    && (t.base == TypeId::STRING || self.types.name(t.base).starts_with("signal")),
+                "a signal or a string".to_string(),
+            ),
             PTy::Switch => (false, "switch".to_string()),
         };
         if ok {

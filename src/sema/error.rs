@@ -313,6 +313,17 @@ impl SemaError {
             help,
             warning: false,
         };
+        // A name of a RobotWare option rapidvc does not have says which option.
+        let (name, what) = match &self.kind {
+            K::Unsupported { name, what } => (Some(name), *what),
+            K::UnknownType { name } => (Some(name), "data type"),
+            _ => (None, ""),
+        };
+        if let Some(name) = name
+            && let Some(option) = super::options::lookup(name)
+        {
+            return needs_option(name, what, option);
+        }
         match &self.kind {
             K::Undeclared { name, suggestion } => d(
                 Code::SemaUndeclared,
@@ -626,6 +637,20 @@ impl SemaError {
 }
 
 /// A type name in backquotes; a description (with spaces) as it is.
+/// "`ArcL` needs the option 633-4 Arc, which rapidvc does not have".
+fn needs_option(name: &str, what: &str, option: &super::options::RobotOption) -> Details {
+    Details {
+        code: Code::SemaNeedsOption,
+        message: format!("`{name}` needs the option {option}, which rapidvc does not have"),
+        label: format!("{what} of the RobotWare option {}", option.name),
+        help: Some(format!(
+            "rapidvc implements base RobotWare; {} is an option it does not have (docs/rapid.md, \"RobotWare options\")",
+            option.name
+        )),
+        warning: false,
+    }
+}
+
 fn quote(s: &str) -> String {
     if s.contains(' ') {
         s.to_string()

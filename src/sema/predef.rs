@@ -106,6 +106,7 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
         ],
     ),
     ("egm_minmax", &[("min", "num"), ("max", "num")]),
+    ("listitem", &[("image", "string"), ("text", "string")]),
 ];
 
 /// Non-value and semi-value types, modelled as records with hidden components.
@@ -123,10 +124,28 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("signalgi", &[("name", "string")]),
     ("signalgo", &[("name", "string")]),
     ("socketdev", &[("id", "num")]),
+    // Up to 1024 bytes and the count of valid ones; the bytes are kept as the characters
+    // U+0000–U+00FF of a string (`functions::raw_bytes`).
+    ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
+    ("dir", &[("id", "num")]),
+    (
+        "trapdata",
+        &[
+            ("domain", "num"),
+            ("number", "num"),
+            ("type", "num"),
+            ("title", "string"),
+            ("str1", "string"),
+            ("str2", "string"),
+            ("str3", "string"),
+            ("str4", "string"),
+            ("str5", "string"),
+        ],
+    ),
 ];
 
-/// Aliases of `num` known to the kernel and the EGM option.
+/// Aliases of `num` known to the kernel, sockets and the EGM option.
 const NUM_ALIASES: &[&str] = &[
     "errnum",
     "intnum",
@@ -137,10 +156,15 @@ const NUM_ALIASES: &[&str] = &[
     "errtype",
     "identno",
     "aiotrigg",
+    "buttondata",
+    "icondata",
+    "tpnum",
     "egmstate",
     "egmstopmode",
     "egmframetype",
     "egmcorrstate",
+    "socketstatus",
+    "inttypes",
 ];
 
 /// `aiotrigg` constants (ISignalAO conditions).

@@ -197,34 +197,25 @@ impl Checker<'_> {
         })
     }
 
+    /// Report `id` as undeclared, with the closest visible name as a suggestion
+    /// (`suggest.rs`).
     pub(super) fn undeclared(&mut self, id: &ast::Ident) {
         let key = id.folded();
-        let mut best: Option<(usize, String)> = None;
-        let mut consider = |name: &str| {
-            let d = edit_distance(&key, &name.to_ascii_uppercase());
-            if d <= 2 && best.as_ref().is_none_or(|(bd, _)| d < *bd) {
-                best = Some((d, name.to_string()));
-            }
+        let params: Vec<&str> = match &self.rcx {
+            Some(rcx) => self.routines[rcx.rid.0 as usize]
+                .params
+                .iter()
+                .map(|p| p.name.as_str())
+                .collect(),
+            None => Vec::new(),
         };
-        if let Some(rcx) = &self.rcx {
-            for p in &self.routines[rcx.rid.0 as usize].params {
-                consider(&p.name);
-            }
-        }
-        let m = self.cur_module;
-        for g in &self.globals {
-            let visible = match g.origin {
-                GlobalOrigin::Module(gm) => !g.local || gm == m,
-                _ => true,
-            };
-            if visible {
-                consider(&g.name);
-            }
-        }
+        let suggestion = self
+            .suggester
+            .suggest(&key, self.cur_module, &params, &self.globals);
         self.err(
             K::Undeclared {
                 name: id.node.clone(),
-                suggestion: best.map(|(_, n)| n),
+                suggestion,
             },
             id.span,
         );
@@ -366,20 +357,4 @@ impl Checker<'_> {
         }
         found
     }
-}
-
-/// Levenshtein distance (for "did you mean").
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != *cb))
-                .min(prev[j + 1] + 1)
-                .min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
 }

@@ -165,13 +165,15 @@ MODULE interrupts
     edges := 0;
     SetAO ao1, 0;
     CONNECT a WITH on_level;
-    ISignalAO ao1, AIO_ABOVE_HIGH, 50, 0, 0, a;
+    ! DeltaValue 15: a new interrupt needs a change of more than 15 from the value at the
+    ! last one (ABB's stored reference value), within the condition.
+    ISignalAO ao1, AIO_ABOVE_HIGH, 50, 0, 15, a;
     SetAO ao1, 10;
     Assert edges = 0;
     SetAO ao1, 60;
     Assert edges = 1;
     SetAO ao1, 70;
-    Assert edges = 1 \Msg:="only the crossing triggers";
+    Assert edges = 1 \Msg:="a change of 10 is within the delta";
     SetAO ao1, 0;
     SetAO ao1, 80;
     Assert edges = 2;

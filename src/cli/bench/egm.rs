@@ -35,7 +35,7 @@ use crate::motion::{Executor, Setpoint};
 use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
-use crate::robot::{Pose, Robot, ToolData, WobjData};
+use crate::robot::{Robot, ToolData};
 use crate::signals::SignalTable;
 use crate::time::RobotTime;
 
@@ -336,17 +336,7 @@ fn drive(
     let fail = |e: crate::controller::egm_controller::EgmFailure| e.to_string();
     handle
         .submit(MotionCommand::MoveAbsJ(MoveAbsJ {
-            args: MoveArgs {
-                id: 1,
-                source: None,
-                speed: SpeedData::v(1000.0),
-                speed_override: None,
-                zone: ZoneData::FINE,
-                tool: ToolData::tool0(),
-                wobj: WobjData::wobj0(),
-                tload: None,
-                pdisp: Pose::identity(),
-            },
+            args: MoveArgs::new(1, SpeedData::v(1000.0), ZoneData::FINE, ToolData::tool0()),
             target: JointTarget {
                 robax: START,
                 extax: EXTAX_NONE,

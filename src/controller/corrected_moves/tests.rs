@@ -18,7 +18,7 @@ use crate::motion::Setpoint;
 use crate::robot::command::{
     EXTAX_NONE, MoveArgs, MoveC, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
 };
-use crate::robot::{ConfData, Pose, Robot, ToolData, WobjData};
+use crate::robot::{ConfData, Pose, Robot, ToolData};
 use crate::signals::SignalTable;
 use crate::time::RobotTime;
 
@@ -112,17 +112,7 @@ impl Rig {
     fn args(&mut self, v: f64, zone: ZoneData) -> MoveArgs {
         let id = self.next_id;
         self.next_id += 1;
-        MoveArgs {
-            id,
-            source: None,
-            speed: SpeedData::v(v),
-            speed_override: None,
-            zone,
-            tool: ToolData::tool0(),
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: Pose::identity(),
-        }
+        MoveArgs::new(id, SpeedData::v(v), zone, ToolData::tool0())
     }
 
     /// MoveJ to `t`, fine.

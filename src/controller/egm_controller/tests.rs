@@ -16,24 +16,14 @@ use crate::motion::CoreConfig;
 use crate::robot::command::{
     EXTAX_NONE, JointTarget, MotionCommand, MoveAbsJ, MoveArgs, SpeedData, ZoneData,
 };
-use crate::robot::{JointsDeg, ToolData, WobjData};
+use crate::robot::{JointsDeg, ToolData};
 use crate::time::RobotTime;
 
 const START: JointsDeg = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
 
 fn abs_j(id: u64, q: JointsDeg) -> MotionCommand {
     MotionCommand::MoveAbsJ(MoveAbsJ {
-        args: MoveArgs {
-            id,
-            source: None,
-            speed: SpeedData::v(1000.0),
-            speed_override: None,
-            zone: ZoneData::FINE,
-            tool: ToolData::tool0(),
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: Pose::identity(),
-        },
+        args: MoveArgs::new(id, SpeedData::v(1000.0), ZoneData::FINE, ToolData::tool0()),
         target: JointTarget {
             robax: q,
             extax: EXTAX_NONE,

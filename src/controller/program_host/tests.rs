@@ -16,17 +16,7 @@ fn host() -> ControllerHost {
 
 fn abs_j(robax: JointsDeg, zone: ZoneData) -> MotionCommand {
     MotionCommand::MoveAbsJ(MoveAbsJ {
-        args: MoveArgs {
-            id: 0,
-            source: None,
-            speed: SpeedData::v(1000.0),
-            speed_override: None,
-            zone,
-            tool: ToolData::tool0(),
-            wobj: WobjData::wobj0(),
-            tload: None,
-            pdisp: Pose::identity(),
-        },
+        args: MoveArgs::new(0, SpeedData::v(1000.0), zone, ToolData::tool0()),
         target: JointTarget {
             robax,
             extax: EXTAX_NONE,

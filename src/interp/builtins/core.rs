@@ -164,6 +164,20 @@ fn err_write(cx: &mut Ctx<'_>) -> Exec<Value> {
             reason.push(cx.str(i)?.to_string());
         }
     }
+    // The user domain of the event log (USER_DEF_ERR): 80001 an error, 80002 a warning
+    // (`\W`), 80003 information (`\I`); `IError` traps see it.
+    let (number, etype) = match (cx.present(0), cx.present(1)) {
+        (true, _) => (2, 2),
+        (_, true) => (3, 1),
+        _ => (1, 3),
+    };
+    cx.it.log_event(crate::interp::interrupts::LogEvent {
+        domain: 8,
+        number,
+        etype,
+        title: header.clone(),
+        strs: reason.clone(),
+    });
     cx.host().output(Output::ErrWrite {
         warning,
         header,

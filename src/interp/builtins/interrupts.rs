@@ -1,5 +1,6 @@
 //! Interrupt instructions: `IDelete`, `IDisable`, `IEnable`, `ISleep`, `IWatch`, `ITimer`,
-//! `ISignalDI`, `ISignalDO`, `ISignalAO` (CONNECT is a statement).
+//! `ISignalDI`, `ISignalDO` (CONNECT is a statement; the analog and group signal
+//! interrupts, `IPers` and `IError` are in `io_events.rs`).
 
 use super::io::signal_name;
 use super::{Ctx, Registry};
@@ -59,34 +60,10 @@ pub(super) fn register(r: &mut Registry) {
         r"PROC ISignalDO(\switch Single | switch SingleSafe, VAR signaldo Signal, dionum TriggValue, intnum Interrupt)",
         signal_digital,
     );
-    r.add(
-        r"PROC ISignalAO(\switch Single | switch SingleSafe, VAR signalao Signal, aiotrigg Condition, num HighValue, num LowValue, num DeltaValue, \switch DPos | switch DNeg, intnum Interrupt)",
-        |cx| {
-            let single = cx.present(0) || cx.present(1);
-            let name = signal_name(cx, 2)?;
-            let cond = cx.int(3, "Condition")?;
-            if !(1..=7).contains(&cond) {
-                return Err(cx.error(
-                    errnum::ERR_ARGVALERR,
-                    format!("{cond} is not an aiotrigg condition (AIO_ABOVE_HIGH … AIO_ALWAYS)"),
-                ));
-            }
-            let high = cx.f64(4)?;
-            let low = cx.f64(5)?;
-            let no = intno(cx, 9)?;
-            let span = cx.span;
-            let trig = Trigger::Analog {
-                cond: cond as u8,
-                high,
-                low,
-            };
-            cx.it.order_watch(no, &name, trig, single, span)?;
-            Ok(Value::Absent)
-        },
-    );
 }
 
-fn intno(cx: &Ctx<'_>, i: usize) -> Exec<i32> {
+/// Interrupt-number argument `i`, checked to be connected.
+pub(super) fn intno(cx: &Ctx<'_>, i: usize) -> Exec<i32> {
     let no = cx.int(i, "Interrupt")? as i32;
     cx.it.check_intno(no, cx.span)?;
     Ok(no)

@@ -147,20 +147,45 @@ fn pulse_do(cx: &mut Ctx<'_>) -> Exec<Value> {
     Ok(Value::Absent)
 }
 
-fn wait_signal(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let name = signal_name(cx, 0)?;
-    let want = dio(cx, 1)?;
-    let max = cx.opt_f64(2)?;
+/// Wait (running traps) until signal `name`'s value passes `test`, or for at most `max`
+/// seconds; true when it passed.
+pub(super) fn wait_for_signal(
+    cx: &mut Ctx<'_>,
+    name: &str,
+    max: Option<f64>,
+    test: impl Fn(f64) -> bool,
+) -> Exec<bool> {
     let deadline = max.map(|m| cx.now().after_secs(m));
     let (p, span) = (cx.p, cx.span);
     let mut f = |it: &mut crate::interp::Interp, _: &crate::ir::Program| {
         let v = it
             .host
-            .read_signal(&name)
+            .read_signal(name)
             .map_err(|e| it.host_error(e, span))?;
-        Ok((v >= 0.5) == (want >= 0.5))
+        Ok(test(v))
     };
-    let done = cx.it.wait(p, span, deadline, Some(&mut f), 0.1)?;
+    cx.it.wait(p, span, deadline, Some(&mut f), 0.1)
+}
+
+/// Optional `\MaxTime` argument `i`: a time of 0 s or more, else `ERR_ARGVALERR`.
+pub(super) fn max_time(cx: &Ctx<'_>, i: usize) -> Exec<Option<f64>> {
+    let max = cx.opt_f64(i)?;
+    if let Some(m) = max
+        && !(m >= 0.0 && m.is_finite())
+    {
+        return Err(cx.error(
+            errnum::ERR_ARGVALERR,
+            format!("MaxTime {m} s is not a time (0 s or more)"),
+        ));
+    }
+    Ok(max)
+}
+
+fn wait_signal(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let name = signal_name(cx, 0)?;
+    let want = dio(cx, 1)?;
+    let max = cx.opt_f64(2)?;
+    let done = wait_for_signal(cx, &name, max, |v| (v >= 0.5) == (want >= 0.5))?;
     if !done {
         if cx.present(3) {
             cx.set(3, Value::Bool(true))?;

@@ -57,19 +57,27 @@ pub(super) fn register(r: &mut Registry) {
     });
 }
 
-fn tp_write(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let mut s = cx.str(0)?.to_string();
-    if cx.present(1) {
-        s.push_str(&f::format_num(cx.num(1)?));
-    } else if cx.present(2) {
-        s.push_str(&f::format_dnum(cx.f64(2)?));
-    } else if cx.present(3) {
-        s.push_str(f::format_bool(cx.bool(3)?));
-    } else if cx.present(4) {
-        s.push_str(&val_to_str(cx.value(4)?));
-    } else if cx.present(5) {
-        s.push_str(&val_to_str(cx.value(5)?));
+/// The text of string argument `text` followed by the value of the first present of the
+/// alternatives `\Num | \Dnum | \Bool | \Pos | \Orient` starting at argument `alt`
+/// (`TPWrite`, `Write`).
+pub(super) fn compose(cx: &Ctx<'_>, text: usize, alt: usize) -> Exec<String> {
+    let mut s = cx.str(text)?.to_string();
+    if cx.present(alt) {
+        s.push_str(&f::format_num(cx.num(alt)?));
+    } else if cx.present(alt + 1) {
+        s.push_str(&f::format_dnum(cx.f64(alt + 1)?));
+    } else if cx.present(alt + 2) {
+        s.push_str(f::format_bool(cx.bool(alt + 2)?));
+    } else if cx.present(alt + 3) {
+        s.push_str(&val_to_str(cx.value(alt + 3)?));
+    } else if cx.present(alt + 4) {
+        s.push_str(&val_to_str(cx.value(alt + 4)?));
     }
+    Ok(s)
+}
+
+fn tp_write(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let s = compose(cx, 0, 1)?;
     let n = s.chars().count();
     if n > MAX_STRING {
         return Err(cx.error(

@@ -57,7 +57,10 @@ impl Sink {
                 Some(slot) => *slot = x,
                 None => return it.store(&c.prog, pl, Value::Num(x)),
             },
-            Sink::Place(pl) => return pl.store(it, c, Value::Num(x)),
+            Sink::Place(pl) => match pl.fields_num_mut(it) {
+                Some(slot) => *slot = x,
+                None => return pl.store(it, c, Value::Num(x)),
+            },
             Sink::Return => {
                 match &mut it.ret {
                     Value::Num(r) => *r = x,

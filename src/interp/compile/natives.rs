@@ -159,6 +159,30 @@ fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
     crate::functions::string::str_part(text, p, l).map(|out| Value::Str(out.into()))
 }
 
+/// `NumToStr(x, 0)` of an integer below 2^24 in magnitude (the text `int_to_str` writes),
+/// written on the stack: one allocation for the value, none for a single digit.
+fn whole_text(x: f32) -> Option<Value> {
+    if x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
+        return None;
+    }
+    let mut buf = [0u8; 12];
+    let mut k = buf.len();
+    let mut n = (x as i32).unsigned_abs();
+    loop {
+        k -= 1;
+        buf[k] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    if (x as i32) < 0 {
+        k -= 1;
+        buf[k] = b'-';
+    }
+    std::str::from_utf8(&buf[k..]).ok().map(Value::str)
+}
+
 impl Interp {
     /// An evaluated `num` argument.
     #[inline(always)]
@@ -216,6 +240,11 @@ impl Interp {
     ) -> Exec<Value> {
         let (x, d) = (self.num_arg(c, x)?, self.num_arg(c, dec)?);
         let d = self.int_arg(d, "Dec", span)?.clamp(-1, 99) as i32;
+        if d == 0
+            && let Some(v) = whole_text(x)
+        {
+            return Ok(v);
+        }
         if let Some(s) = crate::interp::builtins::int_to_str(x, d) {
             return Ok(Value::Str(s.into()));
         }
@@ -233,5 +262,36 @@ impl Interp {
             ));
         }
         Ok(Value::Str(s.into()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::whole_text;
+    use crate::interp::value::Value;
+
+    /// The stack-written text of a whole number is the one `NumToStr(x, 0)` writes.
+    #[test]
+    fn whole_text_matches_num_to_str() {
+        for x in [
+            0.0f32,
+            -0.0,
+            1.0,
+            7.0,
+            -7.0,
+            9.0,
+            10.0,
+            99.0,
+            -100.0,
+            12345.0,
+            16_777_215.0,
+            -16_777_215.0,
+        ] {
+            let want = crate::interp::builtins::int_to_str(x, 0).expect("a whole number");
+            assert_eq!(whole_text(x), Some(Value::str(&want)), "{x}");
+        }
+        assert_eq!(whole_text(0.5), None);
+        assert_eq!(whole_text(16_777_216.0), None);
+        assert_eq!(whole_text(f32::NAN), None);
     }
 }

@@ -114,12 +114,47 @@ impl CPlace {
     }
 
     /// Read a `num` (NaN: an error is pending); `span` is the expression's.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn num(&self, it: &mut Interp, c: &Code, span: Span) -> f32 {
+        match self.fields_num(it) {
+            Some(x) => x,
+            None => self.num_indexed(it, c, span),
+        }
+    }
+
+    /// The `num` held by a place of components only (`q.x`, `p.trans.z` of a local or a
+    /// global): nothing to evaluate first, nothing that can fail. `None` for any other
+    /// place or value (the general path decides).
+    #[inline(always)]
+    fn fields_num(&self, it: &Interp) -> Option<f32> {
+        if !self.idx.is_empty() {
+            return None;
+        }
+        let mut v = match self.root {
+            Root::Local(s) => it.stack.get(it.bp + s as usize)?,
+            Root::Global(g) => it.globals.get(g as usize)?,
+            Root::Ref(_) => return None,
+        };
+        for s in self.steps.iter() {
+            v = match (*s, v) {
+                (CStep::Field(f), Value::Record(fs)) => fs.get(f as usize)?,
+                _ => return None,
+            };
+        }
+        match v {
+            Value::Num(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// [`CPlace::num`] of any other place (indices to evaluate, a reference, an error to
+    /// report): kept out of line, so that the component reads above stay small where they
+    /// are inlined.
+    #[inline(never)]
+    fn num_indexed(&self, it: &mut Interp, c: &Code, span: Span) -> f32 {
         if self.idx.is_empty()
             && let Ok(Value::Num(x)) = self.walk(it, &[])
         {
-            // Components only (`q.x`, `p.trans.z`): nothing to evaluate first.
             return *x;
         }
         if self.idx.len() > MAX_INDICES {
@@ -139,6 +174,30 @@ impl CPlace {
                 let u = it.walk_err(e, self.ir.span);
                 it.fail_nf(u)
             }
+        }
+    }
+
+    /// The `num` held by a place of components only (`q.x`, `p.trans.z` of a local or a
+    /// global), to write; `None` for any other place or value (the general path decides).
+    #[inline(always)]
+    pub(crate) fn fields_num_mut<'a>(&self, it: &'a mut Interp) -> Option<&'a mut f32> {
+        if !self.idx.is_empty() {
+            return None;
+        }
+        let mut v = match self.root {
+            Root::Local(s) => it.stack.get_mut(it.bp + s as usize)?,
+            Root::Global(g) => it.globals.get_mut(g as usize)?,
+            Root::Ref(_) => return None,
+        };
+        for s in self.steps.iter() {
+            match *s {
+                CStep::Field(f) => v = field_mut(v, f).ok()?,
+                CStep::Elem(_) => return None,
+            }
+        }
+        match v {
+            Value::Num(x) => Some(x),
+            _ => None,
         }
     }
 

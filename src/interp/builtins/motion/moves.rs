@@ -79,10 +79,12 @@ fn move_args(cx: &Ctx<'_>, l: Layout) -> Exec<MoveArgs> {
     })
 }
 
-/// Queue the move; at a stop point without `\Conc`, wait until the robot is there.
-fn submit(cx: &mut Ctx<'_>, cmd: MotionCommand) -> Exec<Value> {
+/// Queue the move; at a stop point without `\Conc`, wait until the robot is there. Its tool
+/// and work object become the active ones (`GetSysData`).
+fn submit(cx: &mut Ctx<'_>, cmd: MotionCommand, l: Layout) -> Exec<Value> {
     let stop_point = cmd.args().zone.finep && !cx.present(CONC);
     let id = cx.host().motion_submit(cmd).map_err(|e| cx.host_err(e))?;
+    crate::interp::builtins::system::note_move_data(cx, l.tool(), l.wobj());
     if stop_point {
         wait_for(cx, MotionWait::Done(id))?;
     }
@@ -101,7 +103,7 @@ pub(super) fn move_abs_j(cx: &mut Ctx<'_>) -> Exec<Value> {
         target: data::jointtarget(cx, cx.value(1)?)?,
         no_eoffs: cx.present(3),
     });
-    submit(cx, cmd)
+    submit(cx, cmd, l)
 }
 
 /// `MoveJ [\Conc,] ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\TLoad]`.
@@ -115,7 +117,7 @@ pub(super) fn move_j(cx: &mut Ctx<'_>) -> Exec<Value> {
         target: data::robtarget(cx, cx.value(1)?)?,
         conf_check: cx.it.host.motion_modes().conf_j,
     });
-    submit(cx, cmd)
+    submit(cx, cmd, l)
 }
 
 /// `MoveL [\Conc,] ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr] [\TLoad]`.
@@ -131,7 +133,7 @@ pub(super) fn move_l(cx: &mut Ctx<'_>) -> Exec<Value> {
         target: data::robtarget(cx, cx.value(1)?)?,
         conf_check: cx.it.host.motion_modes().conf_l,
     });
-    submit(cx, cmd)
+    submit(cx, cmd, l)
 }
 
 /// `MoveC [\Conc,] CirPoint, ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr]
@@ -147,5 +149,5 @@ pub(super) fn move_c(cx: &mut Ctx<'_>) -> Exec<Value> {
         to_point: data::robtarget(cx, cx.value(2)?)?,
         conf_check: cx.it.host.motion_modes().conf_l,
     });
-    submit(cx, cmd)
+    submit(cx, cmd, l)
 }

@@ -1,0 +1,326 @@
+//! Data reached by name and data asked about itself: `GetDataVal`, `SetDataVal`, `ArgName`,
+//! `IsPers`, `IsVar`, `Type`.
+//!
+//! A name given as text is looked up as the calling routine would see it: its routine data
+//! first, then module data (a `LOCAL` declaration only from its own module). Only entire
+//! data objects are found (`"reg1"`, not `"reg{1}"` or `"p10.trans"`); predefined error
+//! numbers, signals and mechanical units are not data objects here. The value and the target
+//! must have the same type (`ERR_SYMBOL_TYPE`) and, for arrays, the same sizes (`ERR_INVDIM`);
+//! a name nobody declared, or a constant `SetDataVal` would change, is `ERR_SYM_ACCESS`.
+//!
+//! `ArgName` follows a reference parameter to the data the caller passed. The data behind an
+//! IN parameter (a copy) is not followed: that is reported as not supported, by name.
+//! `Type` answers with the name of the type after aliases are resolved (rapidvc keeps no
+//! alias names at run time), so `\BaseName` gives the same answer.
+
+use super::{Ctx, Registry};
+use crate::interp::NArg;
+use crate::interp::errnum;
+use crate::interp::error::{ErrorKind, Exec};
+use crate::interp::place::{AbsPlace, AbsRoot, Step};
+use crate::interp::value::Value;
+use crate::ir::{GlobalOrigin, ParamSlot, Storage, Ty};
+
+/// Register this domain.
+pub(super) fn register(r: &mut Registry) {
+    r.add(
+        "PROC GetDataVal(string Object, INOUT anydata Value)",
+        get_data_val,
+    );
+    r.add(
+        "PROC SetDataVal(string Object, anydata Value)",
+        set_data_val,
+    );
+    r.add(
+        r"FUNC string ArgName(REF anydata Parameter, \INOUT num ErrorNumber)",
+        arg_name,
+    );
+    r.add("FUNC bool IsPers(INOUT anydata DatObj)", |cx| {
+        let pers = matches!(what_is(cx, 0), Some(Origin::Global(g)) if cx.p.globals[g].storage == Storage::Pers);
+        Ok(Value::Bool(pers))
+    });
+    r.add("FUNC bool IsVar(INOUT anydata DatObj)", |cx| {
+        let var = match what_is(cx, 0) {
+            Some(Origin::Global(g)) => cx.p.globals[g].storage == Storage::Var,
+            Some(Origin::Routine { .. }) => true,
+            None => false,
+        };
+        Ok(Value::Bool(var))
+    });
+    r.add(
+        r"FUNC string Type(REF anydata Data, \switch BaseName)",
+        type_name,
+    );
+}
+
+/// Where the data behind a reference argument is declared.
+enum Origin {
+    /// Module data.
+    Global(usize),
+    /// Routine data or a value parameter: the routine and the slot in its frame.
+    Routine {
+        routine: crate::ir::RoutineId,
+        slot: u32,
+    },
+}
+
+/// The data object behind reference argument `i` (its entire object, whatever path the
+/// argument adds).
+fn what_is(cx: &Ctx<'_>, i: usize) -> Option<Origin> {
+    let NArg::Ref(place) = cx.arg(i)? else {
+        return None;
+    };
+    match place.root {
+        AbsRoot::Global(g) => Some(Origin::Global(g as usize)),
+        AbsRoot::Stack(abs) => {
+            let frame = cx.it.frames.iter().rev().find(|f| f.bp <= abs)?;
+            Some(Origin::Routine {
+                routine: frame.routine,
+                slot: abs - frame.bp,
+            })
+        }
+        AbsRoot::Absent => None,
+    }
+}
+
+/// The declared type of value slot `slot` of `routine` (routine data, value parameters,
+/// `FOR` variables).
+fn slot_ty(cx: &Ctx<'_>, routine: crate::ir::RoutineId, slot: u32) -> Option<(Ty, String)> {
+    let r = cx.p.routines.get(routine.0 as usize)?;
+    if let Some(l) = r.locals.iter().find(|l| l.slot == slot) {
+        return Some((l.ty, l.name.clone()));
+    }
+    r.params
+        .iter()
+        .find(|p| p.slot == ParamSlot::Value(slot))
+        .map(|p| (p.ty, p.name.clone()))
+}
+
+/// The type of what reference argument `i` designates, following its path.
+fn ref_ty(cx: &Ctx<'_>, i: usize) -> Option<Ty> {
+    let NArg::Ref(place) = cx.arg(i)? else {
+        return None;
+    };
+    let mut ty = match what_is(cx, i)? {
+        Origin::Global(g) => cx.p.globals.get(g)?.ty,
+        Origin::Routine { routine, slot } => slot_ty(cx, routine, slot)?.0,
+    };
+    for step in &place.path {
+        ty = match step {
+            Step::Field(f) if ty.rank == 0 => cx.p.types.fields(ty.base)?.get(*f as usize)?.ty,
+            Step::Elem(_) if ty.rank > 0 => ty.elem(),
+            _ => return None,
+        };
+    }
+    Some(ty)
+}
+
+/// The data object called `name` as the calling routine sees it: its place, type and
+/// storage class.
+fn find_by_name(cx: &Ctx<'_>, name: &str) -> Option<(AbsPlace, Ty, Storage)> {
+    let frame = cx.it.frames.last()?;
+    let routine = cx.p.routines.get(frame.routine.0 as usize)?;
+    if let Some(l) = routine
+        .locals
+        .iter()
+        .find(|l| l.name.eq_ignore_ascii_case(name))
+    {
+        let place = AbsPlace {
+            root: AbsRoot::Stack(frame.bp + l.slot),
+            path: Vec::new(),
+        };
+        return Some((place, l.ty, Storage::Var));
+    }
+    let module = routine.module;
+    let found = cx.p.globals.iter().enumerate().find(|(_, g)| {
+        g.name.eq_ignore_ascii_case(name)
+            && match g.origin {
+                GlobalOrigin::Module(m) => !g.local || m == module,
+                _ => false,
+            }
+    });
+    found.map(|(i, g)| (AbsPlace::global(i as u32), g.ty, g.storage))
+}
+
+/// Is module data `g` in a read-only (stdlib) module?
+fn read_only_module(cx: &Ctx<'_>, place: &AbsPlace) -> bool {
+    match place.root {
+        AbsRoot::Global(g) => match cx.p.globals[g as usize].origin {
+            GlobalOrigin::Module(m) => cx.p.modules[m.0 as usize].stdlib,
+            _ => true,
+        },
+        _ => false,
+    }
+}
+
+/// The data object `Object` (argument 0) of the same type as `target`.
+fn object(cx: &Ctx<'_>, target: Option<Ty>) -> Exec<(AbsPlace, Storage)> {
+    let name = cx.str(0)?;
+    let Some((place, ty, storage)) = find_by_name(cx, name) else {
+        return Err(cx.error(
+            errnum::ERR_SYM_ACCESS,
+            format!("there is no data object `{name}` that this routine can reach"),
+        ));
+    };
+    if let Some(t) = target
+        && t != ty
+    {
+        let types = &cx.p.types;
+        let (kind, message) = if t.base == ty.base {
+            (errnum::ERR_INVDIM, "has other dimensions than")
+        } else {
+            (errnum::ERR_SYMBOL_TYPE, "is of another type than")
+        };
+        return Err(cx.error(
+            kind,
+            format!(
+                "`{name}` ({}) {message} the value ({})",
+                types.display(ty),
+                types.display(t)
+            ),
+        ));
+    }
+    Ok((place, storage))
+}
+
+fn get_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let (place, _) = object(cx, ref_ty(cx, 1))?;
+    let value = cx
+        .it
+        .abs_get(&place)
+        .map_err(|e| cx.it.walk_err(e, cx.span))?
+        .clone();
+    if !crate::interp::place::same_dims(cx.value(1)?, &value) {
+        return Err(cx.error(
+            errnum::ERR_INVDIM,
+            format!("`{}` has other array sizes than the variable", cx.str(0)?),
+        ));
+    }
+    cx.set(1, value)?;
+    Ok(Value::Absent)
+}
+
+fn set_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let ty = match cx.args.get(1) {
+        Some(crate::ir::Arg::Value(e)) => value_ty(cx, e),
+        _ => None,
+    };
+    let (place, storage) = object(cx, ty)?;
+    if storage == Storage::Const || read_only_module(cx, &place) {
+        return Err(cx.error(
+            errnum::ERR_SYM_ACCESS,
+            format!("`{}` is read-only: SetDataVal cannot change it", cx.str(0)?),
+        ));
+    }
+    let value = cx.value(1)?.clone();
+    let old = cx
+        .it
+        .abs_get(&place)
+        .map_err(|e| cx.it.walk_err(e, cx.span))?;
+    if !crate::interp::place::same_dims(old, &value) {
+        return Err(cx.error(
+            errnum::ERR_INVDIM,
+            format!("`{}` has other array sizes than the value", cx.str(0)?),
+        ));
+    }
+    cx.it.store_abs(&place, value, cx.span)?;
+    Ok(Value::Absent)
+}
+
+/// The static type of an IN argument, as far as it is known without the compiler: data,
+/// literals, and the results of functions and records are matched by shape instead.
+fn value_ty(cx: &Ctx<'_>, e: &crate::ir::Expr) -> Option<Ty> {
+    use crate::ir::ExprKind as K;
+    match &e.kind {
+        K::Num(_) => Some(Ty::NUM),
+        K::Dnum(_) => Some(Ty::DNUM),
+        K::Bool(_) => Some(Ty::BOOL),
+        K::Str(_) => Some(Ty::STRING),
+        K::Global(g) => cx.p.globals.get(*g as usize).map(|g| g.ty),
+        K::Local(s) => {
+            let frame = cx.it.frames.last()?;
+            slot_ty(cx, frame.routine, *s).map(|t| t.0)
+        }
+        _ => None,
+    }
+}
+
+fn arg_name(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let name = match cx.arg(0) {
+        Some(NArg::Ref(place)) if place.path.is_empty() => match what_is(cx, 0) {
+            Some(Origin::Global(g)) => Ok(cx.p.globals[g].name.clone()),
+            Some(Origin::Routine { routine, slot }) => {
+                let r = &cx.p.routines[routine.0 as usize];
+                // An IN parameter holds a copy: the caller's data is not known here.
+                if let Some(p) = r.params.iter().find(|p| p.slot == ParamSlot::Value(slot)) {
+                    return Err(in_param_unsupported(cx, &p.name));
+                }
+                slot_ty(cx, routine, slot)
+                    .map(|(_, n)| n)
+                    .ok_or("a FOR variable")
+            }
+            None => Err("not a data object"),
+        },
+        Some(NArg::Ref(_)) => Err("a component or element, not an entire data object"),
+        Some(NArg::Switch) => Err("a switch"),
+        _ => Err("an expression, not a data object"),
+    };
+    match name {
+        Ok(n) => {
+            if cx.present(1) {
+                cx.set(1, Value::Num(0.0))?;
+            }
+            cx.string(n)
+        }
+        Err(_) if cx.present(1) => {
+            cx.set(1, Value::Num(errnum::ERR_ARGNAME as f32))?;
+            Ok(Value::str(""))
+        }
+        Err(why) => Err(cx.error(
+            errnum::ERR_ARGNAME,
+            format!("the argument of ArgName is {why}"),
+        )),
+    }
+}
+
+fn in_param_unsupported(cx: &Ctx<'_>, param: &str) -> crate::interp::error::Unwind {
+    cx.it.fatal(
+        ErrorKind::Unsupported,
+        cx.span,
+        format!(
+            "`ArgName` of the IN parameter `{param}` is not supported by rapidvc: an IN \
+             parameter holds a copy, and rapidvc does not keep the name of the data it was \
+             copied from (pass it as INOUT, or pass the name)"
+        ),
+    )
+}
+
+fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let ty = match cx.arg(0) {
+        Some(NArg::Ref(_)) => ref_ty(cx, 0),
+        _ => match cx.args.first() {
+            Some(crate::ir::Arg::Value(e)) => value_ty(cx, e),
+            _ => None,
+        },
+    };
+    let ty = match ty {
+        Some(t) => t,
+        None => match cx.value(0)? {
+            Value::Num(_) => Ty::NUM,
+            Value::Dnum(_) => Ty::DNUM,
+            Value::Bool(_) => Ty::BOOL,
+            Value::Str(_) => Ty::STRING,
+            _ => {
+                return Err(cx.it.fatal(
+                    ErrorKind::Unsupported,
+                    cx.span,
+                    "`Type` of a computed record value is not supported by rapidvc \
+                     (give it a data object)",
+                ));
+            }
+        },
+    };
+    // Arrays: the element type's name, as ABB's Type gives it.
+    let name = cx.p.types.name(ty.base).to_string();
+    cx.string(name)
+}
