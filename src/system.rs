@@ -35,7 +35,7 @@ pub struct Services {
 impl Clone for Services {
     fn clone(&self) -> Self {
         Services {
-            calendar: self.calendar.clone(),
+            calendar: self.calendar,
             info: self.info.clone(),
             cfg: self.cfg.clone(),
             texts: self.texts.clone(),
