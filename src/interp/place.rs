@@ -82,6 +82,18 @@ pub(crate) fn elem<'a>(v: &'a Value, idx: &[i64]) -> Result<&'a Value, WalkErr> 
     }
 }
 
+/// The element of array `v` at `idx` (one index per dimension), for writing.
+pub(crate) fn elem_mut<'a>(v: &'a mut Value, idx: &[i64]) -> Result<&'a mut Value, WalkErr> {
+    match v {
+        Value::Array(a) => match a.offset(idx) {
+            Some(o) => a.data.get_mut(o).ok_or(WalkErr::Shape),
+            None => Err(oob(a, idx)),
+        },
+        Value::Absent => Err(WalkErr::NotPresent),
+        _ => Err(WalkErr::Shape),
+    }
+}
+
 pub(crate) fn oob(a: &Array, idx: &[i64]) -> WalkErr {
     WalkErr::OutOfBounds {
         idx: idx.to_vec(),
@@ -400,14 +412,7 @@ impl Interp {
                 PathOp::Index(es) => {
                     let n = es.len();
                     let ix = idx.get(ii..ii + n).ok_or(WalkErr::Shape)?;
-                    cur = match cur {
-                        Value::Array(a) => match a.offset(ix) {
-                            Some(o) => a.data.get_mut(o).ok_or(WalkErr::Shape)?,
-                            None => return Err(oob(a, ix)),
-                        },
-                        Value::Absent => return Err(WalkErr::NotPresent),
-                        _ => return Err(WalkErr::Shape),
-                    };
+                    cur = elem_mut(cur, ix)?;
                     ii += n;
                 }
             }

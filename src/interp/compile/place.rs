@@ -8,7 +8,7 @@ use super::{Code, Cx};
 use crate::interp::Interp;
 use crate::interp::errnum;
 use crate::interp::error::Exec;
-use crate::interp::place::{WalkErr, elem, field, field_mut, oob, same_dims, step_mut};
+use crate::interp::place::{WalkErr, elem, elem_mut, field, field_mut, same_dims, step_mut};
 use crate::interp::value::{Value, f32_int};
 use crate::ir::{Expr, PathOp, Place, Root};
 use crate::source::Span;
@@ -279,14 +279,7 @@ impl CPlace {
                     CStep::Elem(n) => {
                         let n = n as usize;
                         let ix = idx.get(ii..ii + n).ok_or(WalkErr::Shape)?;
-                        cur = match cur {
-                            Value::Array(a) => match a.offset(ix) {
-                                Some(o) => a.data.get_mut(o).ok_or(WalkErr::Shape)?,
-                                None => return Err(oob(a, ix)),
-                            },
-                            Value::Absent => return Err(WalkErr::NotPresent),
-                            _ => return Err(WalkErr::Shape),
-                        };
+                        cur = elem_mut(cur, ix)?;
                         ii += n;
                     }
                 }
