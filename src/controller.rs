@@ -18,6 +18,7 @@ pub use crate::mass_storage;
 pub mod monotonic_clock;
 mod motion_thread;
 pub mod period_stats;
+pub mod position_events;
 pub mod priority;
 pub mod program_host;
 mod realtime_driver;

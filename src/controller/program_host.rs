@@ -9,6 +9,7 @@
 
 mod egm_parts;
 mod motion_events;
+mod position_events;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -18,6 +19,7 @@ use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAr
 use crate::interp::{Host, HostError, VirtualHost};
 use crate::motion::{MotionEvent, MotionState, SingArea};
 use crate::robot::command::{EXTAX_NONE, MotionCommand, RobTarget};
+use crate::robot::trigger::PathTrigger;
 use crate::robot::{
     JointsDeg, Pose, ToolData, WobjData, flange_target, pose_to_pos_quat, target_from_flange,
 };
@@ -284,6 +286,47 @@ impl ControllerHost {
         Ok(st)
     }
 
+    /// Queue a move with position events (keys registered with the controller) as the
+    /// RAPID instruction `name`; see [`Host::motion_submit`].
+    fn submit_with(
+        &mut self,
+        mut cmd: MotionCommand,
+        triggers: &[PathTrigger],
+        name: Option<&'static str>,
+    ) -> Result<u64, HostError> {
+        self.state_checked()?;
+        self.last_id += 1;
+        let id = self.last_id;
+        set_id(&mut cmd, id);
+        let stop_point = zone_of(&cmd).finep;
+        let result = self.ctl()?.submit_triggered(cmd, triggers, name);
+        self.pump_events();
+        if result.is_ok() {
+            self.last_accepted = id;
+        }
+        match result {
+            Ok(()) => {
+                self.submitted += 1;
+                self.last_move = if stop_point {
+                    LastMove::StopPoint
+                } else {
+                    LastMove::FlyBy
+                };
+                Ok(id)
+            }
+            Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
+                Err(self.take_halt(None))
+            }
+            Err(ControllerError::Rejected(e)) => {
+                // The refusal is this instruction's error; its event is not printed.
+                self.errors.retain(|ev| ev.error != e);
+                Err(motion_error(&e, None, self.lines.as_deref()))
+            }
+            Err(e @ ControllerError::Stopped(_)) => Err(self.take_halt(Some(e))),
+            Err(e) => Err(HostError::fatal(e.to_string())),
+        }
+    }
+
     /// True when every move handed to the controller is complete (or was dropped).
     fn all_done(&self, st: &MotionState) -> bool {
         self.last_accepted <= self.void_up_to || st.done(self.last_accepted)
@@ -391,38 +434,8 @@ impl Host for ControllerHost {
         self.io.signal_kind(name)
     }
 
-    fn motion_submit(&mut self, mut cmd: MotionCommand) -> Result<u64, HostError> {
-        self.state_checked()?;
-        self.last_id += 1;
-        let id = self.last_id;
-        set_id(&mut cmd, id);
-        let stop_point = zone_of(&cmd).finep;
-        let result = self.ctl()?.submit(cmd);
-        self.pump_events();
-        if result.is_ok() {
-            self.last_accepted = id;
-        }
-        match result {
-            Ok(()) => {
-                self.submitted += 1;
-                self.last_move = if stop_point {
-                    LastMove::StopPoint
-                } else {
-                    LastMove::FlyBy
-                };
-                Ok(id)
-            }
-            Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
-                Err(self.take_halt(None))
-            }
-            Err(ControllerError::Rejected(e)) => {
-                // The refusal is this instruction's error; its event is not printed.
-                self.errors.retain(|ev| ev.error != e);
-                Err(motion_error(&e, None, self.lines.as_deref()))
-            }
-            Err(e @ ControllerError::Stopped(_)) => Err(self.take_halt(Some(e))),
-            Err(e) => Err(HostError::fatal(e.to_string())),
-        }
+    fn motion_submit(&mut self, cmd: MotionCommand) -> Result<u64, HostError> {
+        self.submit_with(cmd, &[], None)
     }
 
     fn motion_reached(&mut self, wait: MotionWait) -> Result<bool, HostError> {
@@ -527,6 +540,10 @@ impl Host for ControllerHost {
 
     fn egm_path(&mut self) -> Option<&mut dyn crate::interp::host::EgmPathHost> {
         if self.egm.is_some() { Some(self) } else { None }
+    }
+
+    fn position_events(&mut self) -> Option<&mut dyn crate::interp::host::PositionEventHost> {
+        if self.ctl.is_some() { Some(self) } else { None }
     }
 }
 
