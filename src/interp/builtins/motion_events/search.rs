@@ -79,7 +79,7 @@ fn stop_mode(cx: &Ctx<'_>) -> (Option<SearchStop>, bool) {
     }
 }
 
-/// The digital signal of argument 4 (`VAR anytype`: a `signaldi`, or in rapidvc also a
+/// The digital signal of argument 4 (`VAR anysignal`: a `signaldi`, or in rapidvc also a
 /// `signaldo`, so that the program itself can drive a search).
 fn search_signal(cx: &mut Ctx<'_>) -> Exec<String> {
     let is_signal = matches!(cx.value(4)?.fields(), Some([Value::Str(_)]));
