@@ -24,6 +24,7 @@ pub mod program_host;
 mod realtime_driver;
 pub mod sample_feed;
 pub mod service;
+pub mod signal_script;
 pub mod summary;
 pub mod tick_sink;
 mod virtual_driver;

@@ -68,6 +68,8 @@ pub struct ControllerHost {
     /// Something outside the program takes part in a virtual run (an external sensor in
     /// lockstep), so a wait may end for reasons the program does not control.
     outside_inputs: bool,
+    /// Signal changes at given times (`--signal-script`).
+    script: super::signal_script::SignalScript,
 }
 
 impl std::fmt::Debug for ControllerHost {
@@ -99,6 +101,7 @@ impl ControllerHost {
             last_move: LastMove::None,
             stop: None,
             outside_inputs: false,
+            script: Default::default(),
         }
     }
 
@@ -353,6 +356,12 @@ impl Host for ControllerHost {
     /// Runs the robot until `deadline`, or until the motion state changes (a move ends or
     /// starts, the robot stops), whichever comes first.
     fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError> {
+        // A scripted signal change ends the wait at its time.
+        self.apply_script()?;
+        let deadline = self
+            .script
+            .next_time()
+            .map_or(deadline, |t| t.min(deadline));
         let (target, limit) = match self.max_time {
             Some(max) if deadline > RobotTime::from_secs_f64(max) => {
                 (RobotTime::from_secs_f64(max), Some(max))
@@ -406,6 +415,7 @@ impl Host for ControllerHost {
                 if reached(&st) && !lead.is_zero() {
                     self.program_time = self.program_time.max(target);
                 }
+                self.apply_script()?;
                 Ok(self.now())
             }
             // The robot stopped on a motion error; its event may have been taken already
@@ -423,6 +433,7 @@ impl Host for ControllerHost {
     }
 
     fn read_signal(&mut self, name: &str) -> Result<f64, HostError> {
+        self.apply_script()?;
         self.io.read_signal(name)
     }
 

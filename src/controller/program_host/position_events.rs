@@ -13,6 +13,26 @@ use crate::robot::command::MotionCommand;
 use crate::robot::trigger::PathTrigger;
 
 use super::ControllerHost;
+use crate::controller::signal_script::SignalScript;
+
+impl ControllerHost {
+    /// Change signals at the times of `script` (`--signal-script`).
+    pub fn with_signal_script(mut self, script: SignalScript) -> Self {
+        self.script = script;
+        self
+    }
+
+    /// Make the script's changes that are due.
+    pub(super) fn apply_script(&mut self) -> Result<(), HostError> {
+        if self.script.next_time().is_none_or(|t| t > self.now()) {
+            return Ok(());
+        }
+        for (name, value) in self.script.take_due(self.now()) {
+            self.io.write_signal(&name, value)?;
+        }
+        Ok(())
+    }
+}
 
 impl PositionEventHost for ControllerHost {
     fn submit_with_events(
