@@ -130,15 +130,7 @@ impl At {
 }
 
 /// The fine zone of a search.
-const FINE: crate::robot::command::ZoneData = crate::robot::command::ZoneData {
-    finep: true,
-    pzone_tcp: 0.0,
-    pzone_ori: 0.0,
-    pzone_eax: 0.0,
-    zone_ori: 0.0,
-    zone_leax: 0.0,
-    zone_reax: 0.0,
-};
+const FINE: crate::robot::command::ZoneData = crate::robot::command::ZoneData::FINE;
 
 /// The command of a move from its arguments and the modal settings.
 fn command(cx: &Ctx<'_>, kind: Kind, at: At) -> Exec<MotionCommand> {
