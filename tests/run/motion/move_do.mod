@@ -54,7 +54,8 @@ MODULE move_do
     target := p20;
     MoveLSync p20, v200, fine, tool0, "synced";
     MoveCAO pc, p10, v200, z10, tool0, ao1, 7;
-    MoveLGO p20, v200, z10, tool0, go1, 3;
+    MoveJAO p20, v200, z10, tool0, ao1, 7.5;
+    MoveLGO p10, v200, z10, tool0, go1, 3;
     target := p30;
     MoveJSync p30, v200, fine, tool0, "synced";
     target := p20;
