@@ -67,6 +67,13 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
     for idle in &loaded.idle {
         eprintln!("note: task {} has no modules; it does not run", idle.name);
     }
+    let uses_sockets = tasks_use_sockets(&loaded);
+    if uses_sockets || args.realtime || args.view.needs_realtime() {
+        eprintln!(
+            "error: several tasks run in virtual time only: --realtime and programs with sockets are not supported with several tasks yet"
+        );
+        return ExitCode::from(2);
+    }
     let operator = match answers::read(args.answers.as_deref()) {
         Ok(file) => answers::operator(file.as_ref(), None),
         Err(msg) => {
@@ -105,16 +112,6 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
             }
         }
         let uses_egm = egm_options::uses_egm(&prog, &sources);
-        let uses_sockets = tasks
-            .iter()
-            .filter_map(|t| t.program.as_deref())
-            .any(socket_clock::uses_sockets);
-        if uses_sockets || args.realtime {
-            eprintln!(
-                "error: several tasks run in virtual time only: --realtime and programs with sockets are not supported with several tasks yet"
-            );
-            return ExitCode::from(2);
-        }
         match super::start_controller(
             &args,
             &sources,
@@ -277,6 +274,14 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
+}
+
+fn tasks_use_sockets(loaded: &LoadedSystem) -> bool {
+    loaded
+        .tasks
+        .iter()
+        .filter_map(|t| t.program.as_deref())
+        .any(socket_clock::uses_sockets)
 }
 
 /// What a run of several tasks does not support yet (checked before anything runs).
