@@ -331,3 +331,32 @@ fn the_cell_modules_check() {
         );
     }
 }
+
+/// A task that never waits hands the processor over every 1000 statements: the other task
+/// sees the shared count it has reached by then, and the busy task's loop is not finished.
+#[test]
+fn a_busy_task_shares_the_processor_every_1000_statements() {
+    let ended = run_system(
+        "slice",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num count := 0;\n  PROC main()\n    FOR i FROM 1 TO 5000 DO\n      count := count + 1;\n    ENDFOR\n    TPWrite \"a: \" \\Num:=count;\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS num count := 0;\n  PROC main()\n    TPWrite \"b first sees \" \\Num:=count;\n    WHILE count < 5000 DO\n      WaitTime 0.001;\n    ENDWHILE\n    TPWrite \"b: \" \\Num:=count;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let lines: Vec<&str> = ended.stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{}", ended.stdout);
+    // The slice ends at the 1000th step (the FOR statement and its body's statements count),
+    // which is the same point of the loop on every run.
+    assert_eq!(lines[0], "[T_B] b first sees 998");
+    assert_eq!(lines[1], "[T_ROB1] a: 5000");
+    assert_eq!(lines[2], "[T_B] b: 5000");
+}
