@@ -360,3 +360,35 @@ fn a_busy_task_shares_the_processor_every_1000_statements() {
     assert_eq!(lines[1], "[T_ROB1] a: 5000");
     assert_eq!(lines[2], "[T_B] b: 5000");
 }
+
+/// An unhandled error in one task stops the others; `EXIT` in a NORMAL task too.
+#[test]
+fn an_error_or_exit_in_one_task_stops_the_others() {
+    let waiting = "MODULE a\n  PROC main()\n    TPWrite \"a waits\";\n    WaitTime 100;\n    TPWrite \"a never gets here\";\n  ENDPROC\nENDMODULE\n";
+    let failing = "MODULE b\n  VAR num zero := 0;\n  PROC main()\n    WaitTime 1;\n    TPWrite \"b: \" \\Num:=1 / zero;\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("fail", &[("T_ROB1", MOTION, waiting), ("T_B", "", failing)]);
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "[T_ROB1] a waits\n");
+    assert!(
+        ended.stderr.contains("error in task T_B"),
+        "{}",
+        ended.stderr
+    );
+    assert!(ended.stderr.contains("ERR_DIVZERO"), "{}", ended.stderr);
+    assert!(
+        ended
+            .stderr
+            .contains("task T_ROB1: program stopped with the other tasks"),
+        "{}",
+        ended.stderr
+    );
+    let exiting = "MODULE b\n  PROC main()\n    WaitTime 1;\n    EXIT;\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("exit", &[("T_ROB1", MOTION, waiting), ("T_B", "", exiting)]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "[T_ROB1] a waits\n");
+    assert!(
+        ended.stderr.contains("task T_B: program ended by EXIT"),
+        "{}",
+        ended.stderr
+    );
+}

@@ -199,11 +199,8 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         let sched = Arc::clone(&sched);
         let entry = task.config.entry.clone();
         let name = task.config.name.clone();
-        let cycles = if task.config.kind == crate::config::sys::TaskType::Normal {
-            args.cycles
-        } else {
-            1
-        };
+        let normal = task.config.kind == crate::config::sys::TaskType::Normal;
+        let cycles = if normal { args.cycles } else { 1 };
         let operator = if Some(i) == motion || motion.is_none() && i == 0 {
             operator.take()
         } else {
@@ -239,6 +236,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                             entry: &entry,
                             cycles,
                             labels,
+                            normal,
                         },
                         &sources,
                         &sched,
@@ -335,6 +333,8 @@ struct Which<'a> {
     cycles: u32,
     /// Several tasks run: messages name the task.
     labels: bool,
+    /// A NORMAL task (its EXIT or Stop stops the other tasks).
+    normal: bool,
 }
 
 /// Run a task's entry routine `cycles` times.
@@ -350,6 +350,7 @@ fn run_task(
         entry,
         cycles,
         labels,
+        normal,
     } = *task;
     let who = if labels {
         format!("task {name}: ")
@@ -361,6 +362,10 @@ fn run_task(
             Ok(Outcome::Completed | Outcome::ExitCycle) => {}
             Ok(Outcome::Exited) => {
                 eprintln!("{who}program ended by EXIT");
+                if normal {
+                    // The NORMAL tasks start and stop together.
+                    sched.halt_all(format!("EXIT in task {name}"));
+                }
                 return TaskEnd {
                     code: ExitCode::SUCCESS,
                     drain: true,
@@ -376,6 +381,9 @@ fn run_task(
                 } else if sched.halt_flag().load(Ordering::Relaxed) {
                     "stopped at the end of the run"
                 } else {
+                    if normal {
+                        sched.halt_all(format!("Stop in task {name}"));
+                    }
                     "stopped (Stop)"
                 };
                 eprintln!("{who}program {why}");
