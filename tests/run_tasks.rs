@@ -392,3 +392,20 @@ fn an_error_or_exit_in_one_task_stops_the_others() {
         ended.stderr
     );
 }
+
+/// Arrays travel with their sizes (`rmqheader`), a receiver of other sizes gets
+/// `ERR_RMQ_DIM`, and `WaitSyncTask \\InPos` also waits for the robot to stand in position.
+#[test]
+fn rmq_arrays_and_wait_sync_in_position() {
+    let a = "MODULE a\n  VAR rmqslot b;\n  VAR num arr{3} := [1, 2, 3];\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQFindSlot b, \"T_B\";\n    RMQSendMessage b, arr;\n    RMQSendMessage b, arr;\n    MoveAbsJ [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, z10, tool0;\n    WaitSyncTask \\InPos, s, both;\n    TPWrite \"a in pos\";\n  ENDPROC\nENDMODULE\n";
+    let b = "MODULE b\n  VAR rmqmessage m;\n  VAR num got{3};\n  VAR num two{2};\n  VAR rmqheader h;\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQReadWait m;\n    RMQGetMsgHeader m \\Header:=h;\n    RMQGetMsgData m, got;\n    TPWrite \"b got \" + ValToStr(got{3}) + \" \" + h.datatype + \" ndim \" + ValToStr(h.ndim) + \" dim1 \" + ValToStr(h.dim1);\n    RMQReadWait m;\n    RMQGetMsgData m, two;\n  ERROR\n    TPWrite \"b: \" \\Num:=ERRNO;\n    WaitSyncTask s, both;\n    TPWrite \"b synced\";\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("arrays", &[("T_ROB1", MOTION, a), ("T_B", "", b)]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let dim = rapidvc::ir::errnum::ERR_RMQ_DIM;
+    assert_eq!(
+        ended.stdout,
+        format!(
+            "[T_B] b got 3 num ndim 1 dim1 3\n[T_B] b: {dim}\n[T_B] b synced\n[T_ROB1] a in pos\n"
+        )
+    );
+}

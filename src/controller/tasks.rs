@@ -114,8 +114,8 @@ struct State {
     halted_because: Option<String>,
     sync: HashMap<String, SyncPoint>,
     next_seq: u64,
-    /// Names of the tasks that do not run (idle) but have numbers.
-    idle: Vec<(i32, String)>,
+    /// The tasks that do not run (idle) but have numbers.
+    idle: Vec<TaskSpec>,
     /// Real time: the clock the tasks without a robot read and sleep on.
     real: Option<Arc<dyn Clock>>,
 }
@@ -173,10 +173,7 @@ impl Scheduler {
                 halted_because: None,
                 sync: HashMap::new(),
                 next_seq: 0,
-                idle: idle
-                    .into_iter()
-                    .map(|s| (s.number, s.config.name))
-                    .collect(),
+                idle,
                 real: None,
             }),
             turn: Condvar::new(),
@@ -191,6 +188,20 @@ impl Scheduler {
             // A task thread that panicked holds no invariant the others need.
             Err(poisoned) => poisoned.into_inner(),
         }
+    }
+
+    /// Every task of the system in task-number order: its spec, and whether it runs (has a
+    /// program) and has ended (for a controller's task list).
+    pub fn task_list(&self) -> Vec<(TaskSpec, bool, bool)> {
+        let st = self.lock();
+        let mut v: Vec<(TaskSpec, bool, bool)> = st
+            .slots
+            .iter()
+            .map(|s| (s.spec.clone(), true, s.run == Run::Done))
+            .chain(st.idle.iter().map(|s| (s.clone(), false, false)))
+            .collect();
+        v.sort_by_key(|t| t.0.number);
+        v
     }
 
     /// Number of tasks that run.
@@ -418,15 +429,6 @@ impl TaskHost for TaskHandle {
         self.spec().map_or(0, |s| s.number)
     }
 
-    fn task_name_of(&self, n: i32) -> Option<String> {
-        let st = self.sched.lock();
-        st.slots
-            .iter()
-            .find(|s| s.spec.number == n)
-            .map(|s| s.spec.config.name.clone())
-            .or_else(|| st.idle.iter().find(|i| i.0 == n).map(|i| i.1.clone()))
-    }
-
     fn mec_task_number(&self) -> i32 {
         let st = self.sched.lock();
         st.slots
@@ -560,14 +562,6 @@ impl TaskHost for TaskHandle {
         if let Some(s) = st.slots.get_mut(self.me) {
             s.queue.clear();
         }
-    }
-
-    fn rmq_max_size(&self, slot: i32) -> Option<usize> {
-        let st = self.sched.lock();
-        st.slots
-            .iter()
-            .find(|s| s.spec.number == slot)
-            .map(|s| s.spec.config.rmq_max_msg_size)
     }
 }
 
@@ -942,8 +936,19 @@ mod tests {
     #[test]
     fn virtual_time_jumps_to_each_deadline_in_order() {
         let halt = Arc::new(AtomicBool::new(false));
-        let sched = Scheduler::new(vec![spec("A", 1), spec("B", 2)], Vec::new(), halt, None);
+        let sched = Scheduler::new(
+            vec![spec("A", 1), spec("B", 3)],
+            vec![spec("IDLE", 2)],
+            halt,
+            None,
+        );
         let order = two_waits(&sched);
+        let list: Vec<(i32, bool, bool)> = sched
+            .task_list()
+            .iter()
+            .map(|t| (t.0.number, t.1, t.2))
+            .collect();
+        assert_eq!(list, [(1, true, true), (2, false, false), (3, true, true)]);
         assert_eq!(
             order,
             [

@@ -143,7 +143,12 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         .iter()
         .map(|c| TaskSpec {
             config: c.clone(),
-            number: 0,
+            number: config
+                .sys
+                .tasks
+                .iter()
+                .position(|t| t.name == c.name)
+                .map_or(0, |i| i as i32 + 1),
         })
         .collect();
     let sched = Scheduler::new(
