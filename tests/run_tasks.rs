@@ -316,9 +316,40 @@ fn a_backup_without_task_folders_names_the_path() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Every module of the cell checks with `rapidvc check` (every inter-task name is known).
+/// Every module of the cell checks with `rapidvc check` (every inter-task name is known),
+/// task by task and as the backup folder; a PERS of two types is found by the check too.
 #[test]
 fn the_cell_modules_check() {
+    let ended = run_in(&repo(), &["check", "tests/tasks/cell"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("checked 4 files: 0 errors"),
+        "{}",
+        ended.stderr
+    );
+    let (dir, _) = system(
+        "checkpers",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num p := 1;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS string p := \"x\";\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    let ended = run_in(&dir, &["check", "T_ROB1=t_rob1.mod", "T_B=t_b.mod"]);
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("pers_type_mismatch"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
     for task in ["TASK1", "TASK2", "TASK3"] {
         let dir = repo().join("tests/tasks/cell/RAPID").join(task);
         let ended = run_in(&repo(), &["check", dir.to_str().unwrap()]);
