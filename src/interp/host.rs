@@ -54,9 +54,11 @@ use crate::time::RobotTime;
 mod egm_host;
 mod egm_path_host;
 mod position_events;
+mod task_host;
 pub use egm_host::{EgmHost, EgmRun};
 pub use egm_path_host::EgmPathHost;
 pub use position_events::{PositionEventHost, ProgramAction, SearchStop, TriggAction, TriggEvent};
+pub use task_host::{RmqMessage, TaskHost};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -308,6 +310,18 @@ pub trait Host {
     /// The position-event capability (`TriggL`, `MoveLDO`, `SearchL`, …), when this
     /// controller has one.
     fn position_events(&mut self) -> Option<&mut dyn PositionEventHost> {
+        None
+    }
+
+    /// Let the other RAPID tasks run (the end of a time slice; see `interp::tasks`). A host
+    /// of a single task returns at once.
+    fn yield_now(&mut self) -> Result<(), HostError> {
+        Ok(())
+    }
+
+    /// The capability of a host running among several RAPID tasks (`WaitSyncTask`, the
+    /// RAPID message queue, task numbers), `None` for a single task.
+    fn tasks(&mut self) -> Option<&mut dyn TaskHost> {
         None
     }
 }
