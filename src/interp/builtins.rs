@@ -16,6 +16,8 @@ mod io_events;
 mod math;
 mod modules;
 mod motion;
+mod motion_settings;
+mod path_recovery;
 mod pose;
 mod rawbytes;
 mod sockets;
@@ -96,6 +98,8 @@ impl Registry {
         data_by_name::register(&mut r);
         io_events::register(&mut r);
         motion::register(&mut r);
+        motion_settings::register(&mut r);
+        path_recovery::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
         files::register(&mut r);

@@ -1,0 +1,88 @@
+//! The controller's side of `StopMove`, `StartMove`, `StopMoveReset`, `SpeedRefresh`,
+//! `StorePath`, `RestoPath` and `ClearPath`: the stop-move state and the speed override the
+//! program reads back, and the executor's path operations (`motion::PathOp`).
+
+use super::ControllerHost;
+use crate::interp::HostError;
+use crate::interp::errnum;
+use crate::interp::host::PathCommand;
+use crate::motion::{PathOp, PathOpError};
+
+/// Carry out `cmd` (see the module docs).
+pub(super) fn run(h: &mut ControllerHost, cmd: PathCommand) -> Result<(), HostError> {
+    h.state_checked()?;
+    let before = h.modes;
+    let op = match cmd {
+        PathCommand::Stop { quick } => {
+            h.modes.stop_move = true;
+            PathOp::Hold { quick }
+        }
+        PathCommand::Start => {
+            h.modes.stop_move = false;
+            PathOp::Release
+        }
+        PathCommand::Reset => {
+            // The state ends; the held path stays held until StartMove (or ClearPath).
+            h.modes.stop_move = false;
+            return Ok(());
+        }
+        PathCommand::Speed(pct) => {
+            h.modes.speed_refresh = pct;
+            PathOp::Speed(pct / 100.0)
+        }
+        PathCommand::Store => PathOp::Store,
+        PathCommand::Restore => PathOp::Restore,
+        PathCommand::Clear => {
+            // Waits for the cleared moves are over.
+            h.void_up_to = h.last_id;
+            PathOp::Clear
+        }
+    };
+    let result = h.ctl()?.path_op(op);
+    h.pump_events();
+    if let Err(e) = result {
+        h.modes = before;
+        return Err(path_error(cmd, e));
+    }
+    match cmd {
+        PathCommand::Store => h.stored_accepted = Some(h.last_accepted),
+        PathCommand::Restore => {
+            if let Some(a) = h.stored_accepted.take() {
+                h.last_accepted = a;
+            }
+        }
+        _ => {}
+    }
+    if cmd == PathCommand::Clear && !h.modes.stop_move {
+        // Without a stop-move state nothing holds the new moves.
+        h.ctl()?
+            .path_op(PathOp::Release)
+            .map_err(|e| path_error(cmd, e))?;
+    }
+    Ok(())
+}
+
+/// The program's error for a refused path operation.
+fn path_error(cmd: PathCommand, e: PathOpError) -> HostError {
+    let what = match cmd {
+        PathCommand::Stop { .. } => "StopMove",
+        PathCommand::Start => "StartMove",
+        PathCommand::Reset => "StopMoveReset",
+        PathCommand::Speed(_) => "SpeedRefresh",
+        PathCommand::Store => "StorePath",
+        PathCommand::Restore => "RestoPath",
+        PathCommand::Clear => "ClearPath",
+    };
+    match e {
+        PathOpError::TooFar => HostError::rapid(
+            errnum::ERR_PATHDIST,
+            format!(
+                "{what}: {e} (the robot must be within {} mm and {}° of the place where the \
+                 path was interrupted)",
+                crate::motion::executor::path_hold_limits::REGAIN_MAX_MM,
+                crate::motion::executor::path_hold_limits::REGAIN_MAX_DEG
+            ),
+        ),
+        _ => HostError::fatal(format!("{what}: {e}")),
+    }
+}
