@@ -223,3 +223,29 @@ fn path_and_world_acceleration_limits_bound_the_tcp() {
     );
     assert!((a[3] - a[0]).abs() < 1.0, "off again: {} vs {}", a[3], a[0]);
 }
+
+#[test]
+fn corrwrite_offsets_the_corr_move_in_the_path_frame() {
+    let c = trace_of("corr.mod", "corr");
+    let all = rows(&c);
+    // `MoveL p20, v200, fine, tool0 \Corr` (line 28) along world +y with the tool pointing
+    // down: path y is world +x (5 mm from `lateral`), path z is world −z (10 mm from
+    // `height`, written by a TRAP half-way).
+    let mv: Vec<&Row> = all.iter().filter(|r| r.line == "28").collect();
+    assert!(mv.len() > 100, "rows of the MoveL");
+    let end = mv.last().expect("rows");
+    assert!((end.p[0] - 1105.0).abs() < 1e-3, "x {}", end.p[0]);
+    assert!((end.p[1] - 300.0).abs() < 1e-3, "y {}", end.p[1]);
+    assert!((end.p[2] - 790.0).abs() < 1e-3, "z {}", end.p[2]);
+    // The offset grows at most 100 mm/s (0.4 mm a cycle): no jump.
+    for w in mv.windows(2) {
+        let dx = (w[1].p[0] - w[0].p[0]).abs();
+        let dz = (w[1].p[2] - w[0].p[2]).abs();
+        assert!(dx <= 0.4 + 1e-6 && dz <= 0.4 + 1e-6, "jump at {}", w[1].t);
+    }
+    let lowered = mv.iter().position(|r| r.p[2] < 799.99).expect("lowered");
+    assert!(
+        mv[lowered].t - mv[0].t > 1.0,
+        "the height comes with the TRAP"
+    );
+}

@@ -449,6 +449,28 @@ impl ControllerHandle {
         }
     }
 
+    /// Install a path correction of planned moves from the program side (the `\Corr`
+    /// generators); `false` when one is installed already. Virtual time only: in real time
+    /// the executor belongs to the motion thread.
+    pub fn install_path_correction(
+        &mut self,
+        correction: Box<dyn crate::motion::PathCorrection>,
+    ) -> Result<bool, ControllerError> {
+        match &mut self.driver {
+            Driver::Virtual(v) => {
+                let exec = v.core.executor_mut();
+                if exec.has_path_correction() {
+                    return Ok(false);
+                }
+                drop(exec.set_path_correction(Some(correction)));
+                Ok(true)
+            }
+            Driver::RealTime(_) => Err(ControllerError::Thread(
+                "correction generators (CorrCon) are not supported in real time yet".into(),
+            )),
+        }
+    }
+
     /// Leave the halted state after a motion error; planning restarts where the robot is.
     pub fn recover(&mut self) {
         match &mut self.driver {

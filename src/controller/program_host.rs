@@ -7,6 +7,7 @@
 //! The struct is built with `ControllerHost::new(handle)` and `with_*` methods, so other
 //! capabilities (EGM) can add fields and builders without touching the callers.
 
+mod corr_generators;
 mod egm_parts;
 mod motion_events;
 mod path_recovery;
@@ -52,6 +53,8 @@ pub struct ControllerHost {
     void_up_to: u64,
     /// Moves accepted by the controller.
     submitted: u64,
+    /// The correction generators of `\Corr` moves (made at the first request).
+    corr: Option<path_recovery::Corr>,
     /// `last_accepted` when `StorePath` put the path aside (the moves of the new path are
     /// complete when `RestoPath` brings it back).
     stored_accepted: Option<u64>,
@@ -96,6 +99,7 @@ impl ControllerHost {
             void_up_to: 0,
             submitted: 0,
             stored_accepted: None,
+            corr: None,
             errors: Vec::new(),
             max_time: None,
             lines: None,
@@ -497,6 +501,13 @@ impl Host for ControllerHost {
 
     fn motion_path(&mut self, cmd: PathCommand) -> Result<(), HostError> {
         path_recovery::run(self, cmd)
+    }
+
+    fn motion_corr(
+        &mut self,
+        req: crate::interp::host::CorrRequest,
+    ) -> Result<crate::interp::host::CorrAnswer, HostError> {
+        path_recovery::corr(self, req)
     }
 
     fn robot_target_of(

@@ -100,6 +100,7 @@ impl Registry {
         motion::register(&mut r);
         motion_settings::register(&mut r);
         path_recovery::register(&mut r);
+        path_recovery::register_corr(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
         files::register(&mut r);

@@ -173,6 +173,34 @@ pub enum MotionSetting {
     EOffs(Option<[f64; 6]>),
 }
 
+/// A request to the correction generators (`CorrCon`, `CorrWrite`, …).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CorrRequest {
+    /// `CorrCon`: a new generator; answers its number.
+    Connect,
+    /// `CorrWrite`: the offset of generator `n` (path frame, mm).
+    Write(u32, [f64; 3]),
+    /// `CorrDiscon`: generator `n` is gone.
+    Disconnect(u32),
+    /// `CorrClear`: every generator is gone.
+    Clear,
+    /// `CorrRead`: answers the sum of the offsets.
+    Read,
+    /// The move with this id has `\Corr`.
+    Mark(u64),
+}
+
+/// The answer to a [`CorrRequest`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CorrAnswer {
+    /// The request was carried out.
+    Done,
+    /// The new generator's number.
+    Connected(u32),
+    /// The sum of the offsets (path frame, mm).
+    Offset([f64; 3]),
+}
+
 /// A change of the robot's path as a whole: `StopMove`, `StartMove`, `StorePath`, ….
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PathCommand {
@@ -298,6 +326,12 @@ pub trait Host {
     /// Change the robot's path as a whole (`StopMove`, `StartMove`, `StorePath`, …).
     fn motion_path(&mut self, cmd: PathCommand) -> Result<(), HostError> {
         let _ = cmd;
+        Err(no_robot())
+    }
+
+    /// The correction generators of `\Corr` moves (`CorrCon`, `CorrWrite`, …).
+    fn motion_corr(&mut self, req: CorrRequest) -> Result<CorrAnswer, HostError> {
+        let _ = req;
         Err(no_robot())
     }
 

@@ -15,7 +15,7 @@ use super::motion::wait_for;
 use super::{Ctx, Registry};
 use crate::interp::errnum;
 use crate::interp::error::{ErrorKind, Exec, Unwind};
-use crate::interp::host::{MotionWait, PathCommand};
+use crate::interp::host::{CorrAnswer, CorrRequest, MotionWait, PathCommand};
 use crate::interp::value::Value;
 
 /// Register this domain.
@@ -98,6 +98,76 @@ pub(super) fn register(r: &mut Registry) {
         let pct = cx.it.host.motion_modes().speed_refresh;
         cx.num_result(pct)
     });
+}
+
+/// The correction generators (`CorrCon`, …), driving `\Corr` on `MoveL`/`MoveC`: the
+/// descriptor holds the generator's number (0 when not connected); offsets are in the path
+/// frame (x along the path, z the tool's z made perpendicular to it, y = z × x).
+pub(super) fn register_corr(r: &mut Registry) {
+    r.add("PROC CorrCon(VAR corrdescr Descr)", |cx| {
+        let n = match corr(cx, CorrRequest::Connect)? {
+            CorrAnswer::Connected(n) => n,
+            _ => 0,
+        };
+        cx.set(0, Value::Record(Box::new([Value::Num(n as f32)])))?;
+        Ok(Value::Absent)
+    });
+    r.add("PROC CorrWrite(VAR corrdescr Descr, pos Data)", |cx| {
+        let n = descr(cx, 0)?;
+        let data = cx.nums::<3>(1)?;
+        if !data.iter().all(|c| c.is_finite()) {
+            return Err(cx.error(errnum::ERR_ARGVALERR, "the correction must be finite"));
+        }
+        corr(cx, CorrRequest::Write(n, data))?;
+        Ok(Value::Absent)
+    });
+    r.add("PROC CorrDiscon(VAR corrdescr Descr)", |cx| {
+        let n = descr(cx, 0)?;
+        corr(cx, CorrRequest::Disconnect(n))?;
+        cx.set(0, Value::Record(Box::new([Value::Num(0.0)])))?;
+        Ok(Value::Absent)
+    });
+    r.add("PROC CorrClear()", |cx| {
+        corr(cx, CorrRequest::Clear)?;
+        Ok(Value::Absent)
+    });
+    r.add("FUNC pos CorrRead()", |cx| {
+        match corr(cx, CorrRequest::Read)? {
+            CorrAnswer::Offset(o) => Ok(Value::num_record(&o)),
+            _ => Ok(Value::num_record(&[0.0; 3])),
+        }
+    });
+}
+
+/// Mark the move `id` as a `\Corr` move.
+pub(crate) fn mark_corr(cx: &mut Ctx<'_>, id: u64) -> Exec<()> {
+    corr(cx, CorrRequest::Mark(id)).map(drop)
+}
+
+fn corr(cx: &mut Ctx<'_>, req: CorrRequest) -> Exec<CorrAnswer> {
+    cx.host().motion_corr(req).map_err(|e| cx.host_err(e))
+}
+
+/// The generator number in descriptor argument `i` (connected: at least 1).
+fn descr(cx: &Ctx<'_>, i: usize) -> Exec<u32> {
+    let n = cx
+        .value(i)?
+        .fields()
+        .and_then(|f| f.first())
+        .and_then(|v| v.as_f64())
+        .unwrap_or(0.0);
+    if n >= 1.0 && n.fract() == 0.0 && n <= f64::from(u32::MAX) {
+        Ok(n as u32)
+    } else {
+        Err(cx.it.fatal(
+            ErrorKind::Host,
+            cx.span,
+            format!(
+                "`{}`: the correction descriptor is not connected (CorrCon first)",
+                cx.name()
+            ),
+        ))
+    }
 }
 
 fn path(cx: &mut Ctx<'_>, cmd: PathCommand) -> Exec<()> {
