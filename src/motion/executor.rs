@@ -212,7 +212,7 @@ impl Executor {
         MotionState {
             setpoint: self.setpoint,
             pending: self.queue.len(),
-            moving: self.active.is_some() || self.braking.is_some(),
+            moving: self.active.is_some() || self.braking.is_some() || self.scaled_pending(),
             last_done: self.last_done,
             halted: self.halted,
             mode: if self.external.is_some() {

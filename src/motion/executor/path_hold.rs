@@ -384,8 +384,196 @@ impl Executor {
         };
     }
 
+    /// True while an interpolated sample is still to be reached (its segment may be finished
+    /// already: the robot is still moving toward it).
+    pub(super) fn scaled_pending(&self) -> bool {
+        self.scaled.is_some_and(|s| s.pending.is_some())
+    }
+
     /// True while the path is held and the robot has come to rest on it.
     pub(super) fn held_at_rest(&self) -> bool {
         self.rate.hold && self.rate.current == 0.0
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+mod tests {
+    use super::*;
+    use crate::motion::{CoreConfig, MotionCore, Setpoint};
+    use crate::robot::command::{
+        EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
+    };
+    use crate::robot::{ConfData, Robot, ToolData};
+    use crate::time::RobotTime;
+    use std::time::Duration;
+
+    const DT: Duration = Duration::from_millis(4);
+
+    fn target(x: f64, y: f64, z: f64) -> RobTarget {
+        RobTarget {
+            trans: [x, y, z],
+            rot: [0.0, 0.0, 1.0, 0.0],
+            robconf: ConfData::new(0, 0, -1, 1),
+            extax: EXTAX_NONE,
+        }
+    }
+
+    fn move_l(id: u64, y: f64) -> MotionCommand {
+        MotionCommand::MoveL(MoveL {
+            args: MoveArgs::new(id, SpeedData::v(200.0), ZoneData::FINE, ToolData::tool0()),
+            target: target(1000.0, y, 500.0),
+            conf_check: false,
+        })
+    }
+
+    struct Run {
+        core: MotionCore,
+        tick: u32,
+    }
+
+    impl Run {
+        /// A core standing at (1000, 0, 500), tool0 pointing down.
+        fn new() -> Run {
+            let mut core = MotionCore::new(Robot::default(), CoreConfig::default(), [0.0; 6]);
+            core.enqueue(MotionCommand::MoveJ(MoveJ {
+                args: MoveArgs::new(1, SpeedData::v(1000.0), ZoneData::FINE, ToolData::tool0()),
+                target: target(1000.0, 0.0, 500.0),
+                conf_check: false,
+            }))
+            .unwrap();
+            let mut r = Run { core, tick: 0 };
+            r.until(|c| c.state().in_position());
+            r
+        }
+
+        fn step(&mut self) -> Setpoint {
+            self.tick += 1;
+            self.core
+                .tick(RobotTime::ZERO.saturating_add(DT * self.tick))
+        }
+
+        fn steps(&mut self, n: usize) -> Vec<Setpoint> {
+            (0..n).map(|_| self.step()).collect()
+        }
+
+        fn until(&mut self, done: impl Fn(&MotionCore) -> bool) -> Vec<Setpoint> {
+            let mut out = Vec::new();
+            for _ in 0..100_000 {
+                out.push(self.step());
+                if done(&self.core) {
+                    break;
+                }
+            }
+            out
+        }
+    }
+
+    fn y(sp: &Setpoint) -> f64 {
+        sp.tcp.translation.vector.y
+    }
+
+    #[test]
+    fn a_hold_decelerates_on_the_path_and_a_release_finishes_the_move() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 200.0)).unwrap();
+        r.steps(100);
+        r.core.path_op(PathOp::Hold { quick: false }).unwrap();
+        let ramp = r.until(|c| c.state().setpoint.standstill);
+        assert!(ramp.len() > 3, "a ramp, not a jump: {} cycles", ramp.len());
+        for w in ramp.windows(2) {
+            assert!(w[1].speed <= w[0].speed + 1e-9, "slows down steadily");
+            let p = w[1].tcp.translation.vector;
+            assert!((p.x - 1000.0).abs() < 1e-6 && (p.z - 500.0).abs() < 1e-6);
+        }
+        let at = y(ramp.last().unwrap());
+        let held = r.steps(250);
+        assert!(
+            held.iter()
+                .all(|s| y(s) == at && s.standstill && s.speed == 0.0)
+        );
+        assert!(r.core.state().held && !r.core.state().in_position());
+        r.core.path_op(PathOp::Release).unwrap();
+        let rest = r.until(|c| c.state().in_position());
+        assert!((y(rest.last().unwrap()) - 200.0).abs() < 1e-6);
+        assert!(!r.core.state().held);
+    }
+
+    #[test]
+    fn store_and_restore_keep_the_interrupted_move() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 200.0)).unwrap();
+        r.steps(100);
+        assert_eq!(r.core.path_op(PathOp::Store), Err(PathOpError::Moving));
+        assert_eq!(
+            r.core.path_op(PathOp::Restore),
+            Err(PathOpError::NothingStored)
+        );
+        r.core.path_op(PathOp::Hold { quick: true }).unwrap();
+        r.until(|c| c.state().setpoint.standstill);
+        let at = r.core.state().setpoint.tcp.translation.vector.y;
+        r.core.path_op(PathOp::Store).unwrap();
+        assert_eq!(
+            r.core.path_op(PathOp::Store),
+            Err(PathOpError::AlreadyStored)
+        );
+        // A detour on the new path, and back.
+        r.core.enqueue(move_l(3, at - 50.0)).unwrap();
+        r.core.enqueue(move_l(4, at)).unwrap();
+        r.until(|c| c.state().in_position());
+        r.core.path_op(PathOp::Restore).unwrap();
+        assert_eq!(
+            r.core.path_op(PathOp::Restore),
+            Err(PathOpError::NothingStored)
+        );
+        r.core.path_op(PathOp::Release).unwrap();
+        let rest = r.until(|c| c.state().in_position());
+        assert!(rest.iter().all(|s| y(s) >= at - 1e-6), "continues forward");
+        assert!(
+            (y(rest.last().unwrap()) - 200.0).abs() < 1e-6,
+            "ends at {} after {} cycles, {:?}",
+            y(rest.last().unwrap()),
+            rest.len(),
+            r.core.state()
+        );
+        assert_eq!(r.core.state().last_done.map(|d| d.id), Some(2));
+    }
+
+    #[test]
+    fn a_restart_far_from_the_path_is_refused() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 200.0)).unwrap();
+        r.steps(100);
+        r.core.path_op(PathOp::Hold { quick: false }).unwrap();
+        r.until(|c| c.state().setpoint.standstill);
+        r.core.path_op(PathOp::Store).unwrap();
+        let at = r.core.state().setpoint.tcp.translation.vector.y;
+        r.core.enqueue(move_l(3, at - 50.0)).unwrap();
+        r.until(|c| c.state().in_position());
+        r.core.path_op(PathOp::Restore).unwrap();
+        assert_eq!(r.core.path_op(PathOp::Release), Err(PathOpError::TooFar));
+        assert_eq!(
+            r.core.path_op(PathOp::Restore),
+            Err(PathOpError::NothingStored)
+        );
+    }
+
+    #[test]
+    fn a_speed_share_slows_the_move_and_clear_drops_it() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 200.0)).unwrap();
+        r.steps(150);
+        r.core.path_op(PathOp::Speed(0.5)).unwrap();
+        let s = r.steps(100);
+        assert!(
+            (s.last().unwrap().speed - 100.0).abs() < 1e-6,
+            "{}",
+            s.last().unwrap().speed
+        );
+        r.core.path_op(PathOp::Clear).unwrap();
+        let rest = r.until(|c| !c.state().moving);
+        assert!(rest.len() > 1, "a moving robot brakes to rest");
+        let stop = y(rest.last().unwrap());
+        assert!(stop < 199.0, "the move was dropped at y {stop}");
     }
 }
