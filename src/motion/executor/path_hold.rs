@@ -131,6 +131,8 @@ struct Pending {
     sample: Sample,
     at_stop_point: bool,
     first: bool,
+    /// The move completed when this sample is reached (fetching it finished its segment).
+    done: Option<InstrRef>,
 }
 
 /// A path put aside by [`PathOp::Store`].
@@ -315,11 +317,7 @@ impl Executor {
             },
         };
         if s.pending.is_none() {
-            s.pending = self.next_sample().map(|o| Pending {
-                sample: o.sample,
-                at_stop_point: o.at_stop_point,
-                first: o.first,
-            });
+            s.pending = self.fetch();
         }
         let Some(p) = s.pending else {
             // Nothing to play: the robot stands at the end of the path.
@@ -337,11 +335,10 @@ impl Executor {
         if s.phase >= 1.0 {
             s.phase -= 1.0;
             s.base = p.sample;
-            s.pending = self.next_sample().map(|o| Pending {
-                sample: o.sample,
-                at_stop_point: o.at_stop_point,
-                first: o.first,
-            });
+            if let Some(d) = p.done {
+                self.last_done = Some(d);
+            }
+            s.pending = self.fetch();
             out.first = p.first;
             match s.pending {
                 Some(n) if !p.at_stop_point => {
@@ -361,6 +358,23 @@ impl Executor {
             self.scaled = Some(s);
         }
         Some(out)
+    }
+
+    /// The next planned sample as the interpolation's target. A segment its fetch finishes
+    /// counts as done only when the sample is reached.
+    fn fetch(&mut self) -> Option<Pending> {
+        let before = self.last_done;
+        let o = self.next_sample()?;
+        let done = (self.last_done != before)
+            .then_some(self.last_done)
+            .flatten();
+        self.last_done = before;
+        Some(Pending {
+            sample: o.sample,
+            at_stop_point: o.at_stop_point,
+            first: o.first,
+            done,
+        })
     }
 
     /// Move the rate one bounded step toward its target: the change may add at most the
