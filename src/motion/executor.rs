@@ -397,7 +397,10 @@ impl Executor {
                     // Held on the path at rest: the robot stands still.
                     out.at_stop_point |= self.held_at_rest();
                     fresh = out.first;
-                    let mut instr = self.active_instr().or(self.last_done);
+                    let mut instr = self
+                        .active_instr()
+                        .or(self.pending_done())
+                        .or(self.last_done);
                     match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
                         Err(error) => {

@@ -404,6 +404,12 @@ impl Executor {
         self.scaled.is_some_and(|s| s.pending.is_some())
     }
 
+    /// The move whose last sample the interpolation is heading for, once its segment is
+    /// finished (the instruction of the cycles until it is reached).
+    pub(super) fn pending_done(&self) -> Option<InstrRef> {
+        self.scaled.and_then(|s| s.pending).and_then(|p| p.done)
+    }
+
     /// True while the path is held and the robot has come to rest on it.
     pub(super) fn held_at_rest(&self) -> bool {
         self.rate.hold && self.rate.current == 0.0
