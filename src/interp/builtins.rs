@@ -16,6 +16,7 @@ mod io_events;
 mod math;
 mod modules;
 mod motion;
+mod motion_events;
 mod motion_settings;
 mod path_recovery;
 mod pose;
@@ -101,6 +102,7 @@ impl Registry {
         motion_settings::register(&mut r);
         path_recovery::register(&mut r);
         path_recovery::register_corr(&mut r);
+        motion_events::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
         files::register(&mut r);

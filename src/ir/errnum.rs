@@ -98,6 +98,7 @@ errs! {
     ERR_OUTSIDE_REACH = 1402, "Position outside reach";
     ERR_WHLSEARCH = 1403, "No search hit";
     ERR_PATH_STOP = 1404, "Path stopped";
+    ERR_SIGSUPSEARCH = 1405, "Search signal already set at the start";
     ERR_PATHDIST = 1440, "Too far from the interrupted path to restart";
     ERR_SPEED_REFRESH_LIM = 1441, "Speed override out of limits";
     ERR_FRAME = 1442, "The positions do not define a frame";

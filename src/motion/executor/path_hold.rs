@@ -21,6 +21,7 @@ use crate::motion::brake::fewest_steps;
 use crate::motion::event::InstrRef;
 use crate::motion::segment::{Sample, Segment};
 use crate::robot::JointsDeg;
+use crate::time::RobotTime;
 use std::collections::VecDeque;
 
 /// Share of each axis's acceleration a change of the path rate may use (a normal `StopMove`,
@@ -304,7 +305,7 @@ impl Executor {
 
     /// The next cycle's sample at the path rate (module docs); `None` when there is nothing
     /// to play. The flags are those of the sample reached in this cycle.
-    pub(super) fn scaled_sample(&mut self) -> Option<Out> {
+    pub(super) fn scaled_sample(&mut self, now: RobotTime) -> Option<Out> {
         let mut s = match self.scaled {
             Some(s) => s,
             None => Scaled {
@@ -317,7 +318,7 @@ impl Executor {
             },
         };
         if s.pending.is_none() {
-            s.pending = self.fetch();
+            s.pending = self.fetch(now);
         }
         let Some(p) = s.pending else {
             // Nothing to play: the robot stands at the end of the path.
@@ -338,7 +339,7 @@ impl Executor {
             if let Some(d) = p.done {
                 self.last_done = Some(d);
             }
-            s.pending = self.fetch();
+            s.pending = self.fetch(now);
             out.first = p.first;
             match s.pending {
                 Some(n) if !p.at_stop_point => {
@@ -362,9 +363,9 @@ impl Executor {
 
     /// The next planned sample as the interpolation's target. A segment its fetch finishes
     /// counts as done only when the sample is reached.
-    fn fetch(&mut self) -> Option<Pending> {
+    fn fetch(&mut self, now: RobotTime) -> Option<Pending> {
         let before = self.last_done;
-        let o = self.next_sample()?;
+        let o = self.next_sample(now)?;
         let done = (self.last_done != before)
             .then_some(self.last_done)
             .flatten();
@@ -425,7 +426,6 @@ mod tests {
         EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
     };
     use crate::robot::{ConfData, Robot, ToolData};
-    use crate::time::RobotTime;
     use std::time::Duration;
 
     const DT: Duration = Duration::from_millis(4);
