@@ -17,6 +17,8 @@ mod math;
 mod modules;
 mod motion;
 mod motion_events;
+mod motion_settings;
+mod path_recovery;
 mod pose;
 mod rawbytes;
 mod sockets;
@@ -98,6 +100,9 @@ impl Registry {
         data_by_name::register(&mut r);
         io_events::register(&mut r);
         motion::register(&mut r);
+        motion_settings::register(&mut r);
+        path_recovery::register(&mut r);
+        path_recovery::register_corr(&mut r);
         motion_events::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);

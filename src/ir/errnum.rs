@@ -100,6 +100,9 @@ errs! {
     ERR_WHLSEARCH = 1403, "No search hit";
     ERR_PATH_STOP = 1404, "Path stopped";
     ERR_SIGSUPSEARCH = 1405, "Search signal already set at the start";
+    ERR_PATHDIST = 1440, "Too far from the interrupted path to restart";
+    ERR_SPEED_REFRESH_LIM = 1441, "Speed override out of limits";
+    ERR_FRAME = 1442, "The positions do not define a frame";
     ERR_NO_ALIASIO_DEF = 1501, "Signal variable is not connected to a signal";
     ERR_ALIASIO_DEF = 1502, "Signal is not defined";
     ERR_ALIASIO_TYPE = 1503, "Signal has the wrong type";

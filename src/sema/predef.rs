@@ -128,6 +128,8 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
         &[("running", "bool"), ("started", "dnum"), ("acc", "dnum")],
     ),
     ("egmident", &[("id", "num")]),
+    // A correction generator (`CorrCon`): its number, 0 when not connected.
+    ("corrdescr", &[("id", "num")]),
     ("mecunit", &[("name", "string")]),
     ("signaldi", &[("name", "string")]),
     ("signaldo", &[("name", "string")]),
