@@ -42,6 +42,7 @@ mod interrupts;
 pub mod operator;
 pub mod pers;
 mod place;
+pub mod relink;
 pub mod stdlib;
 mod stmt;
 pub mod value;
@@ -136,6 +137,8 @@ struct Frame {
     at: Span,
     /// Inside its ERROR handler: the error being handled.
     handling: Option<Box<RuntimeError>>,
+    /// `RETRY`s already made of the statement whose error is being handled.
+    retries: u32,
 }
 
 /// An argument of a native call.
@@ -199,6 +202,11 @@ pub struct Interp {
     data_values: u64,
     /// The mass storage and the files and directories the program has open.
     files: files::Files,
+    /// The natives and engine the program was built with, and the loader that links
+    /// modules into it while it runs (`Load`, `UnLoad`, …; see [`relink`]).
+    registry: Arc<Registry>,
+    engine: Engine,
+    modules: relink::Modules,
 }
 
 impl std::fmt::Debug for Interp {
@@ -273,6 +281,9 @@ impl Interp {
             module_values,
             data_values: module_values,
             files: files::Files::default(),
+            registry: Arc::new(registry.clone()),
+            engine,
+            modules: relink::Modules::default(),
         }
     }
 

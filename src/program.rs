@@ -17,6 +17,7 @@
 //! only when there is no error (warnings are allowed).
 
 pub mod rapid_files;
+pub mod runtime_loader;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -220,6 +220,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let tee = view.as_ref().map(view_options::ViewRun::session);
+    let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -235,6 +236,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             print_output(o);
         });
     let mut it = Interp::new(prog, &registry, Box::new(host));
+    it.set_module_loader(Box::new(loader));
     it.set_mass_storage(Arc::new(MassStorage::new(args.home.clone())));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));

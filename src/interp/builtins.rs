@@ -6,9 +6,11 @@ mod bits;
 mod clock;
 mod core;
 mod data_by_name;
+pub(crate) mod data_search;
 mod dialogs;
 mod egm;
 mod egm_path;
+mod file_rawbytes;
 mod files;
 mod interrupts;
 mod io;
@@ -101,6 +103,8 @@ impl Registry {
         files::register(&mut r);
         modules::register(&mut r);
         rawbytes::register(&mut r);
+        file_rawbytes::register(&mut r);
+        data_search::register(&mut r);
         sockets::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r

@@ -129,6 +129,9 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
     ("dir", &[("id", "num")]),
+    // A load session of `StartLoad`/`WaitLoad` and a block of `GetNextSym`/`SetDataVal`.
+    ("loadsession", &[("id", "num")]),
+    ("datapos", &[("id", "num")]),
     (
         "trapdata",
         &[
