@@ -500,7 +500,8 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
             }
             Err(e) => {
                 let _ = std::io::stdout().flush();
-                render::runtime_error(&e, sources);
+                // An error in a module loaded while the program ran points into it.
+                render::runtime_error(&e, it.loaded_sources().unwrap_or(sources));
                 return (ExitCode::from(1), false);
             }
         }

@@ -7,6 +7,7 @@ MODULE modules
   VAR num calls := 0;
   VAR num remaining{5};
   VAR num tries := 0;
+  VAR errnum seen := 0;
 
   ! Write a module file: `MODULE name` with the lines of `body` (separated by `|`), to
   ! HOME:/dir/file.
@@ -167,6 +168,24 @@ MODULE modules
     RemoveFile "HOME:/t_save/part_e.mod";
     RemoveFile "HOME:/t_save/copy.mod";
     RemoveDir "HOME:/t_save";
+  ERROR
+    err := ERRNO;
+    TRYNEXT;
+  ENDPROC
+
+  ! A module cannot unload itself while its routine runs (ERR_UNLOAD); the loaded module
+  ! reaches this module's data, and a runtime error in it is handled by its caller here.
+  PROC test_unload_running_module()
+    VAR errnum err := 0;
+    write_mod "t_self", "self.mod", "self_mod", "PROC self_unload()|UnLoad ""HOME:/t_self/self.mod"";|ERROR|seen := ERRNO;|ENDPROC";
+    Load "HOME:/t_self/self.mod";
+    seen := 0;
+    %"self_unload"%;
+    Assert seen = ERR_UNLOAD;
+    Assert ModExist("self_mod");
+    UnLoad "HOME:/t_self/self.mod";
+    RemoveFile "HOME:/t_self/self.mod";
+    RemoveDir "HOME:/t_self";
   ERROR
     err := ERRNO;
     TRYNEXT;
