@@ -175,6 +175,9 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
         ],
     ),
     ("dir", &[("id", "num")]),
+    // A load session of `StartLoad`/`WaitLoad` and a block of `GetNextSym`/`SetDataVal`.
+    ("loadsession", &[("id", "num")]),
+    ("datapos", &[("id", "num")]),
     (
         "trapdata",
         &[
