@@ -24,6 +24,7 @@ mod realtime_driver;
 pub mod sample_feed;
 pub mod service;
 pub mod summary;
+pub mod system_state;
 pub mod tick_sink;
 mod virtual_driver;
 

@@ -9,6 +9,7 @@
 
 mod egm_parts;
 mod motion_events;
+pub mod panel_moves;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -66,6 +67,10 @@ pub struct ControllerHost {
     /// Something outside the program takes part in a virtual run (an external sensor in
     /// lockstep), so a wait may end for reasons the program does not control.
     outside_inputs: bool,
+    /// A controller that stays up: the panel's speed ratio and operating mode applied to
+    /// every move, and the moves kept so a stopped program's move can continue
+    /// (`panel_moves.rs`).
+    panel: Option<panel_moves::PanelMoves>,
 }
 
 impl std::fmt::Debug for ControllerHost {
@@ -97,6 +102,7 @@ impl ControllerHost {
             last_move: LastMove::None,
             stop: None,
             outside_inputs: false,
+            panel: None,
         }
     }
 
@@ -397,7 +403,19 @@ impl Host for ControllerHost {
         let id = self.last_id;
         set_id(&mut cmd, id);
         let stop_point = zone_of(&cmd).finep;
-        let result = self.ctl()?.submit(cmd);
+        let kept = self.panel.as_ref().map(|_| cmd.clone());
+        let result = match self.panel.as_ref().map(|p| p.limits.clone()) {
+            Some(limits) => {
+                let ctl = self.ctl()?;
+                panel_moves::submit_limited(ctl, &limits, cmd)
+            }
+            None => self.ctl()?.submit(cmd),
+        };
+        if result.is_ok()
+            && let (Some(p), Some(c)) = (self.panel.as_mut(), kept)
+        {
+            p.unfinished.push_back((id, c));
+        }
         self.pump_events();
         if result.is_ok() {
             self.last_accepted = id;

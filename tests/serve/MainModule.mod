@@ -1,0 +1,18 @@
+MODULE MainModule
+    ! The program `rapidvc serve` runs in the RWS tests (tests/rws.rs, tests/rws_clients.rs):
+    ! data of every class for the symbol resources, and a main routine that counts its cycles
+    ! and copies the input DI1 (set over RWS) to the output DO_ECHO, so a test sees the
+    ! program running and a signal set by RAPID.
+    PERS num counter := 0;
+    PERS num arr{3} := [1,2,3];
+    PERS jointtarget jt := [[0,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    PERS num cycles := 0;
+    VAR num v := 5;
+    CONST num c := 3;
+
+    PROC main()
+        cycles := cycles + 1;
+        SetDO DO_ECHO, DI1;
+        WaitTime 0.05;
+    ENDPROC
+ENDMODULE
