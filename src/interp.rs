@@ -45,6 +45,7 @@ pub mod pers;
 mod place;
 pub mod stdlib;
 mod stmt;
+pub mod tasks;
 pub mod value;
 
 use std::sync::Arc;
@@ -214,6 +215,8 @@ pub struct Interp {
     data_values: u64,
     /// The mass storage and the files and directories the program has open.
     files: files::Files,
+    /// Running as one task of several: shared persistents and time slices (`tasks.rs`).
+    task: Option<Box<tasks::TaskLink>>,
 }
 
 impl std::fmt::Debug for Interp {
@@ -289,6 +292,7 @@ impl Interp {
             module_values,
             data_values: module_values,
             files: files::Files::default(),
+            task: None,
         }
     }
 
@@ -443,6 +447,7 @@ impl Interp {
         let r = prog.routine(rid);
         let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
         let res = self.call_routine(&prog, rid, &args, r.head_span);
+        self.publish_shared();
         self.data_values = self.module_values;
         self.frames.clear();
         self.stack.clear();
@@ -599,6 +604,7 @@ impl Interp {
         if self.stop.is_some() {
             self.next_poll = self.next_poll.min(self.steps + STOP_CHECK_EVERY);
         }
+        self.next_poll = self.next_poll.min(self.next_task_switch());
     }
 
     /// Build a RAPID error at `span` with the current call stack.

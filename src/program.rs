@@ -13,10 +13,14 @@
 //!   [`SourceMap`] across several module sets (the tasks of one controller): parse every
 //!   module into the shared map, then check each set against the shared signals.
 //!
+//! * [`system::load_system`]: a whole system of several tasks, from a controller backup
+//!   folder or from files with task prefixes (`T_ROB1=main.mod`), the tasks from SYS.cfg.
+//!
 //! Problems are collected in [`Loaded::diags`], never returned early: a program is produced
 //! only when there is no error (warnings are allowed).
 
 pub mod rapid_files;
+pub mod system;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -20,6 +20,7 @@ use crate::program;
 
 pub mod egm_options;
 pub mod socket_clock;
+pub mod tasks;
 pub mod view_options;
 use crate::controller::egm_controller::EgmController;
 use crate::controller::{
@@ -167,6 +168,9 @@ pub fn run(args: RunArgs) -> ExitCode {
             Arc::new(AtomicBool::new(false))
         }
     };
+    if tasks::wants_system(&args) {
+        return tasks::run(args, interrupted);
+    }
     let loaded = program::load(&args.files, args.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
     let Some(prog) = loaded.program.clone() else {
@@ -190,7 +194,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         eprintln!("interrupted before the program started");
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
-    let system = system_services(&args, &loaded);
+    let system = system_services(&args, &loaded.config, &loaded.sources);
     let registry = loaded.registry;
     let signals = loaded.signals;
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
@@ -333,9 +337,12 @@ pub fn run(args: RunArgs) -> ExitCode {
 /// The controller's system side of this run: the calendar (`--date`), the robot (`--robot`),
 /// the configuration database of the configuration directory (which SaveCfgData may write
 /// into with `--save-cfg`).
-pub(super) fn system_services(args: &RunArgs, loaded: &program::Loaded) -> crate::system::Services {
-    let mut cfg =
-        crate::system::cfg_data::CfgData::from_files(&loaded.config.files, &loaded.sources);
+pub(super) fn system_services(
+    args: &RunArgs,
+    config: &crate::config::Config,
+    sources: &SourceMap,
+) -> crate::system::Services {
+    let mut cfg = crate::system::cfg_data::CfgData::from_files(&config.files, sources);
     if args.save_cfg
         && let Some(dir) = program::config_dir(args.config.as_deref(), &args.files)
     {

@@ -77,6 +77,14 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
     }
     let args = args;
     let a = &args.run;
+    if run::tasks::wants_system(a) {
+        eprintln!(
+            "error: `serve` boots one motion task (T_ROB1) from RAPID files for now; a system \
+             with several tasks (SYS.cfg, a backup folder, `TASK=file`) runs with `rapidvc run` \
+             (virtual time)"
+        );
+        return ExitCode::from(2);
+    }
     let loaded = program::load(&a.files, a.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
     let Some(prog) = loaded.program.clone() else {
@@ -103,7 +111,7 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let system = run::system_services(a, &loaded);
+    let system = run::system_services(a, &loaded.config, &loaded.sources);
     let storage = Arc::new(MassStorage::new(a.home.clone()));
     let roots = match storage.roots() {
         Ok((roots, note)) => {

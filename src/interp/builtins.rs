@@ -21,6 +21,7 @@ mod rawbytes;
 mod sockets;
 mod string;
 mod system;
+mod tasks;
 mod text;
 
 pub(crate) use math::whole;
@@ -102,6 +103,7 @@ impl Registry {
         modules::register(&mut r);
         rawbytes::register(&mut r);
         sockets::register(&mut r);
+        tasks::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

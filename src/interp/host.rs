@@ -53,8 +53,10 @@ use crate::time::RobotTime;
 
 mod egm_host;
 mod egm_path_host;
+mod task_host;
 pub use egm_host::{EgmHost, EgmRun};
 pub use egm_path_host::EgmPathHost;
+pub use task_host::{RmqMessage, TaskHost};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -300,6 +302,18 @@ pub trait Host {
     /// text tables (`crate::system`), when this host has one (the instructions and functions
     /// that need it fail with "… is not supported by this controller" otherwise).
     fn system(&mut self) -> Option<&mut crate::system::Services> {
+        None
+    }
+
+    /// Let the other RAPID tasks run (the end of a time slice; see `interp::tasks`). A host
+    /// of a single task returns at once.
+    fn yield_now(&mut self) -> Result<(), HostError> {
+        Ok(())
+    }
+
+    /// The capability of a host running among several RAPID tasks (`WaitSyncTask`, the
+    /// RAPID message queue, task numbers), `None` for a single task.
+    fn tasks(&mut self) -> Option<&mut dyn TaskHost> {
         None
     }
 }

@@ -469,6 +469,10 @@ impl Interp {
             }
             self.service_interrupts(p, span)?;
         }
+        if self.task.is_some() {
+            self.task_slice_due()
+                .map_err(|e| self.host_error(e, span))?;
+        }
         self.update_poll();
         Ok(())
     }

@@ -16,6 +16,7 @@
 //! | 1601–1699 | sockets and files |
 //! | 1701–1799 | EGM (`ERR_UDPUC_COMM`) |
 //! | 1801–1899 | system: configuration data and text tables (`ERR_CFG_NOTFND`, …) |
+//! | 1901–1999 | several tasks: synchronisation and the RAPID message queue (`ERR_RMQ_FULL`, …) |
 //!
 //! Numbers never change once published; new constants take the next free number of their
 //! group.
@@ -135,6 +136,16 @@ errs! {
     ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
     ERR_SYMBOL_TYPE = 1808, "Data object of another type";
     ERR_INVDIM = 1809, "Data object of other dimensions";
+    ERR_WAITSYNCTASK = 1901, "WaitSyncTask time-out (not every task arrived)";
+    ERR_RMQ_DIM = 1902, "RAPID message data of other dimensions";
+    ERR_RMQ_FULL = 1903, "RAPID message queue of the receiver is full";
+    ERR_RMQ_INVALID = 1904, "RAPID message slot not valid";
+    ERR_RMQ_INVMSG = 1905, "RAPID message not valid";
+    ERR_RMQ_MSGSIZE = 1906, "RAPID message larger than the receiver's queue allows";
+    ERR_RMQ_NAME = 1907, "RAPID message queue name not found";
+    ERR_RMQ_NOMSG = 1908, "No message in the RAPID message queue";
+    ERR_RMQ_TIMEOUT = 1909, "No RAPID message arrived in time";
+    ERR_RMQ_VALUE = 1910, "RAPID message data of another type";
 }
 
 /// The constant with this (case-insensitive) name.

@@ -107,6 +107,18 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
     ),
     ("egm_minmax", &[("min", "num"), ("max", "num")]),
     ("listitem", &[("image", "string"), ("text", "string")]),
+    // Several tasks: a task list entry and a RAPID message's header.
+    ("tasks", &[("taskname", "string")]),
+    (
+        "rmqheader",
+        &[
+            ("datatype", "string"),
+            ("ndim", "num"),
+            ("dim1", "num"),
+            ("dim2", "num"),
+            ("dim3", "num"),
+        ],
+    ),
 ];
 
 /// Non-value and semi-value types, modelled as records with hidden components.
@@ -128,6 +140,24 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     // U+0000–U+00FF of a string (`functions::raw_bytes`).
     ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
+    // Several tasks: a synchronisation point (named by its variable), an RMQ client, and a
+    // RAPID message (header, data as literal text, sender, \UserDef, valid).
+    ("syncident", &[("id", "num")]),
+    ("rmqslot", &[("slot", "num")]),
+    (
+        "rmqmessage",
+        &[
+            ("datatype", "string"),
+            ("ndim", "num"),
+            ("dim1", "num"),
+            ("dim2", "num"),
+            ("dim3", "num"),
+            ("data", "string"),
+            ("sender", "num"),
+            ("userdef", "num"),
+            ("valid", "bool"),
+        ],
+    ),
     ("dir", &[("id", "num")]),
     (
         "trapdata",

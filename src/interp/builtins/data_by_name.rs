@@ -295,15 +295,20 @@ fn in_param_unsupported(cx: &Ctx<'_>, param: &str) -> crate::interp::error::Unwi
     )
 }
 
-fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let ty = match cx.arg(0) {
-        Some(NArg::Ref(_)) => ref_ty(cx, 0),
-        _ => match cx.args.first() {
+/// The static type of argument `i` (a reference's, or an IN argument's as far as
+/// [`value_ty`] knows it), else `None`.
+pub(super) fn arg_type(cx: &Ctx<'_>, i: usize) -> Option<Ty> {
+    match cx.arg(i) {
+        Some(NArg::Ref(_)) => ref_ty(cx, i),
+        _ => match cx.args.get(i) {
             Some(crate::ir::Arg::Value(e)) => value_ty(cx, e),
             _ => None,
         },
-    };
-    let ty = match ty {
+    }
+}
+
+fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let ty = match arg_type(cx, 0) {
         Some(t) => t,
         None => match cx.value(0)? {
             Value::Num(_) => Ty::NUM,

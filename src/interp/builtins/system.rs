@@ -63,10 +63,15 @@ pub(super) fn register(r: &mut Registry) {
     r.add(
         r"FUNC string GetTaskName(\VAR num TaskNo | VAR num MecTaskNo)",
         |cx| {
-            let task = with_system(cx, |s, _| s.info.task.clone())?;
-            for i in 0..2 {
+            // Among several tasks the scheduler knows the name and numbers; alone, the
+            // task is number 1 and moves its own robot.
+            let (task, numbers) = match cx.host().tasks() {
+                Some(t) => (t.task_name(), [t.task_number(), t.mec_task_number()]),
+                None => (with_system(cx, |s, _| s.info.task.clone())?, [1, 1]),
+            };
+            for (i, n) in numbers.into_iter().enumerate() {
                 if cx.present(i) {
-                    cx.set(i, Value::Num(1.0))?;
+                    cx.set(i, Value::Num(n as f32))?;
                 }
             }
             cx.string(task)
