@@ -582,3 +582,65 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
     assert_eq!(ended.code, Some(0), "{ended:?}");
     assert!(ended.stderr.contains("rapidvc serve: stopped"), "{ended:?}");
 }
+
+#[test]
+fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "moves",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    let j1 = |c: &mut Client| -> f64 {
+        let v = c
+            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
+            .json();
+        v["_embedded"]["_state"][0]["rax_1"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let reached = |c: &mut Client| {
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            == "TRUE"
+    };
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=once")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    while j1(&mut c) < 3.0 {
+        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    std::thread::sleep(Duration::from_millis(500));
+    let held = j1(&mut c);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(j1(&mut c), held, "the robot stands while stopped");
+    assert!(held > 3.0 && held < 29.0, "stopped on the way: {held}");
+    assert!(!reached(&mut c), "the program waits in its move");
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=asis")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    while !reached(&mut c) {
+        assert!(t0.elapsed() < Duration::from_secs(15), "the move ends");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert!((j1(&mut c) - 30.0).abs() < 0.01, "at the target");
+    // A single cycle ended: execution stopped.
+    let t0 = Instant::now();
+    while c.get("/rw/rapid/execution?json=1").json()["_embedded"]["_state"][0]["ctrlexecstate"]
+        != "stopped"
+    {
+        assert!(t0.elapsed() < Duration::from_secs(5), "stopped after once");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}

@@ -10,6 +10,17 @@ MODULE MainModule
     VAR num v := 5;
     CONST num c := 3;
 
+    PERS bool reached := FALSE;
+    CONST jointtarget far := [[30,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+
+    ! `--entry moves`: one slow joint move, then `reached` (a stop during the move, and a
+    ! start after it, must bring the robot to `far`).
+    PROC moves()
+        reached := FALSE;
+        MoveAbsJ far, v200, fine, tool0;
+        reached := TRUE;
+    ENDPROC
+
     PROC main()
         cycles := cycles + 1;
         SetDO DO_ECHO, DI1;
