@@ -33,3 +33,35 @@ fn abb_robot_client_drives_every_resource_it_uses() {
         ended.stderr
     );
 }
+
+#[test]
+#[cfg_attr(
+    not(rapidvc_python),
+    ignore = "needs RAPIDVC_PYTHON (a Python with abb_robot_client) when the tests are built"
+)]
+fn abb_robot_client_rws_and_egm_run_joint_pose_and_path_correction_sessions() {
+    // A free UDP port for the client's EGM socket (taken again by the client at once).
+    let port = std::net::UdpSocket::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let device = format!("--device=sensor=127.0.0.1:{port}");
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "pyegm",
+        "tests/serve_egm",
+        &[device.as_str()],
+    );
+    let mut cmd = Command::new(python());
+    cmd.arg(root().join("tests/clients/rws_egm.py"))
+        .arg(srv.url())
+        .arg(port.to_string());
+    let ended = Proc::spawn(cmd).wait(Duration::from_secs(150));
+    assert!(
+        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
+        "stdout:\n{}\nstderr:\n{}",
+        ended.stdout,
+        ended.stderr
+    );
+}
