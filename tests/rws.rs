@@ -644,3 +644,54 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+#[test]
+fn the_speed_ratio_scales_the_moves_planned_after_it() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "speedratio",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    let timed_run = |c: &mut Client| -> f64 {
+        assert_eq!(
+            c.post("/rw/rapid/execution?action=start", "cycle=once")
+                .status,
+            204
+        );
+        let t0 = Instant::now();
+        loop {
+            let v = c
+                .get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
+                .json();
+            let e = c.get("/rw/rapid/execution?json=1").json();
+            if v["_embedded"]["_state"][0]["value"] == "TRUE"
+                && e["_embedded"]["_state"][0]["ctrlexecstate"] == "stopped"
+            {
+                break;
+            }
+            assert!(t0.elapsed() < Duration::from_secs(30), "the run ends");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/move_time?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let full = timed_run(&mut c);
+    assert_eq!(
+        c.post(
+            "/rw/panel/speedratio?action=setspeedratio",
+            "speed-ratio=50"
+        )
+        .status,
+        204
+    );
+    let half = timed_run(&mut c);
+    // Robot time measured by the program in one run: the ratio, not wall-clock figures.
+    let ratio = half / full;
+    assert!((1.6..2.4).contains(&ratio), "{half} s / {full} s = {ratio}");
+}

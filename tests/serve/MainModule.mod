@@ -12,12 +12,21 @@ MODULE MainModule
 
     PERS bool reached := FALSE;
     CONST jointtarget far := [[30,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    CONST jointtarget home := [[0,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    PERS num move_time := 0;
+    VAR clock clk;
 
-    ! `--entry moves`: one slow joint move, then `reached` (a stop during the move, and a
-    ! start after it, must bring the robot to `far`).
+    ! `--entry moves`: to `home`, then one slow joint move to `far` (timed in `move_time`),
+    ! then `reached` (a stop during the move, and a start after it, must bring the robot to
+    ! `far`).
     PROC moves()
         reached := FALSE;
+        MoveAbsJ home, v1000, fine, tool0;
+        ClkReset clk;
+        ClkStart clk;
         MoveAbsJ far, v200, fine, tool0;
+        ClkStop clk;
+        move_time := ClkRead(clk);
         reached := TRUE;
     ENDPROC
 
