@@ -550,6 +550,24 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
     let v = c.get("/rw/rapid/execution?json=1").json();
     assert_eq!(v["_embedded"]["_state"][0]["cycle"], "forever");
     wait_for(&mut c, "the program goes on", &|c| cycles(c) > stopped_at);
+    // The operating mode is what RAPID's OpMode() reads; changing it stops the program.
+    assert_eq!(
+        c.post("/rw/panel/opmode?action=setopmode", "opmode=man")
+            .status,
+        204
+    );
+    let v = c.get("/rw/rapid/execution?json=1").json();
+    assert_eq!(v["_embedded"]["_state"][0]["ctrlexecstate"], "stopped");
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=asis")
+            .status,
+        204
+    );
+    wait_for(&mut c, "RAPID sees OP_MAN_PROG", &|c| {
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/opmode_seen?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            == "2"
+    });
     assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
     assert_eq!(c.post("/rw/rapid/execution?action=resetpp", "").status, 204);
     // Motors off: start is refused.

@@ -7,6 +7,7 @@ MODULE MainModule
     PERS num arr{3} := [1,2,3];
     PERS jointtarget jt := [[0,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
     PERS num cycles := 0;
+    PERS num opmode_seen := 0;
     VAR num v := 5;
     CONST num c := 3;
 
@@ -33,6 +34,7 @@ MODULE MainModule
     PROC main()
         cycles := cycles + 1;
         SetDO DO_ECHO, DI1;
+        opmode_seen := OpMode();
         WaitTime 0.05;
     ENDPROC
 ENDMODULE

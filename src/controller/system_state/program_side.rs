@@ -12,8 +12,8 @@ use super::SystemState;
 use crate::ast::Storage;
 use crate::controller::ControllerHost;
 use crate::controller::service::{
-    Coordinate, CycleMode, Event, MechUnitInfo, ModuleInfo, Request, RobotState, ServiceError,
-    SymbolClass, SymbolInfo, SymbolPath,
+    Coordinate, CycleMode, Event, MechUnitInfo, ModuleInfo, OpMode, Request, RobotState,
+    ServiceError, SymbolClass, SymbolInfo, SymbolPath,
 };
 use crate::events::EventKind;
 use crate::interp::data_access::{DataSymbol, DataWriteError};
@@ -246,6 +246,15 @@ impl ProgramSide {
             self.last_poll = Instant::now();
             self.publish_pers(it, false);
             self.update_robot(it);
+            // RAPID's OpMode() reads the panel's mode.
+            let mode = match self.state.opmode() {
+                OpMode::Auto => crate::system::info::OpMode::Auto,
+                OpMode::ManualReduced => crate::system::info::OpMode::ManualReduced,
+                OpMode::ManualFull => crate::system::info::OpMode::ManualFull,
+            };
+            if let Some(sys) = it.host_mut().system() {
+                sys.info.op_mode = mode;
+            }
         }
     }
 
