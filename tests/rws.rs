@@ -713,3 +713,45 @@ fn the_speed_ratio_scales_the_moves_planned_after_it() {
     let ratio = half / full;
     assert!((1.6..2.4).contains(&ratio), "{half} s / {full} s = {ratio}");
 }
+
+#[test]
+fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "sigint",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=once")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    loop {
+        let v = c
+            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
+            .json();
+        let j1: f64 = v["_embedded"]["_state"][0]["rax_1"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap();
+        if j1 > 3.0 {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let ended = srv.stop(Duration::from_secs(20));
+    assert_eq!(ended.code, Some(0), "{ended:?}");
+    assert!(!ended.timed_out, "{ended:?}");
+    // The summary of the real-time run, with the motion thread's period error.
+    assert!(ended.stderr.contains("period error"), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("rapidvc serve: stopped"),
+        "{}",
+        ended.stderr
+    );
+}
