@@ -53,9 +53,11 @@ use crate::time::RobotTime;
 
 mod egm_host;
 mod egm_path_host;
+mod position_events;
 mod task_host;
 pub use egm_host::{EgmHost, EgmRun};
 pub use egm_path_host::EgmPathHost;
+pub use position_events::{PositionEventHost, ProgramAction, SearchStop, TriggAction, TriggEvent};
 pub use task_host::{RmqMessage, TaskHost};
 
 /// Something the program produced for the outside world.
@@ -314,6 +316,12 @@ pub trait Host {
     /// The capability of a host running among several RAPID tasks (`WaitSyncTask`, the
     /// RAPID message queue, task numbers), `None` for a single task.
     fn tasks(&mut self) -> Option<&mut dyn TaskHost> {
+        None
+    }
+
+    /// The position-event capability (`TriggL`, `MoveLDO`, `SearchL`, …), when this
+    /// controller has one.
+    fn position_events(&mut self) -> Option<&mut dyn PositionEventHost> {
         None
     }
 }

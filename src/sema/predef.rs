@@ -158,6 +158,20 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
             ("valid", "bool"),
         ],
     ),
+    // A position event (`interp/builtins/motion_events/trigg.rs`).
+    (
+        "triggdata",
+        &[
+            ("kind", "num"),
+            ("distance", "num"),
+            ("start", "bool"),
+            ("time", "bool"),
+            ("lead", "num"),
+            ("signal", "string"),
+            ("value", "dnum"),
+            ("intno", "num"),
+        ],
+    ),
     ("dir", &[("id", "num")]),
     (
         "trapdata",

@@ -10,14 +10,15 @@
 //! * **Stop and continue**: [`ControllerHost::hold_motion`] brakes the robot (all axes
 //!   together, within their accelerations) and keeps the moves that had not ended;
 //!   [`ControllerHost::resume_motion`] plans them again from where the robot stands, so an
-//!   interrupted move continues to its target when the program is started again.
+//!   interrupted move continues to its target when the program is started again (its
+//!   position events, `TriggL` and the like, are not fired again).
 
 use std::collections::VecDeque;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
 
 use super::ControllerHost;
-use crate::controller::{ControllerError, ControllerHandle};
+use crate::controller::ControllerHandle;
 use crate::interp::HostError;
 use crate::robot::command::MotionCommand;
 
@@ -52,13 +53,16 @@ pub(super) struct PanelMoves {
     held: bool,
 }
 
-/// Submit `cmd` with the panel's speed ratio and MANR cap applied to the modal settings for
-/// this one move.
-pub(super) fn submit_limited(
+/// Run `submit` with the panel's speed ratio and MANR cap (when `limits` are given) applied
+/// to the modal settings for this one move.
+pub(super) fn with_limits<T>(
     ctl: &mut ControllerHandle,
-    limits: &PanelLimits,
-    cmd: MotionCommand,
-) -> Result<(), ControllerError> {
+    limits: Option<&PanelLimits>,
+    submit: impl FnOnce(&mut ControllerHandle) -> T,
+) -> T {
+    let Some(limits) = limits else {
+        return submit(ctl);
+    };
     let saved = ctl.settings();
     let mut s = saved;
     let ratio = f64::from(limits.speed_ratio.load(Ordering::Relaxed).clamp(1, 100));
@@ -67,7 +71,7 @@ pub(super) fn submit_limited(
         s.velset.max_tcp = s.velset.max_tcp.min(MANUAL_REDUCED_TCP_SPEED);
     }
     ctl.set_settings(s);
-    let result = ctl.submit(cmd);
+    let result = submit(ctl);
     ctl.set_settings(saved);
     result
 }
@@ -135,7 +139,7 @@ impl ControllerHost {
         let limits = p.limits.clone();
         for (id, cmd) in moves {
             let ctl = self.ctl()?;
-            match submit_limited(ctl, &limits, cmd.clone()) {
+            match with_limits(ctl, Some(&limits), |c| c.submit(cmd.clone())) {
                 Ok(()) => {
                     if let Some(p) = self.panel.as_mut() {
                         p.unfinished.push_back((id, cmd));
