@@ -43,6 +43,7 @@ mod interrupts;
 pub mod operator;
 pub mod pers;
 mod place;
+pub mod relink;
 pub mod stdlib;
 mod stmt;
 pub mod tasks;
@@ -150,6 +151,8 @@ struct Frame {
     at: Span,
     /// Inside its ERROR handler: the error being handled.
     handling: Option<Box<RuntimeError>>,
+    /// `RETRY`s already made of the statement whose error is being handled.
+    retries: u32,
 }
 
 /// An argument of a native call.
@@ -217,6 +220,11 @@ pub struct Interp {
     files: files::Files,
     /// Running as one task of several: shared persistents and time slices (`tasks.rs`).
     task: Option<Box<tasks::TaskLink>>,
+    /// The natives and engine the program was built with, and the loader that links
+    /// modules into it while it runs (`Load`, `UnLoad`, …; see [`relink`]).
+    registry: Arc<Registry>,
+    engine: Engine,
+    modules: relink::Modules,
 }
 
 impl std::fmt::Debug for Interp {
@@ -293,6 +301,9 @@ impl Interp {
             data_values: module_values,
             files: files::Files::default(),
             task: None,
+            registry: Arc::new(registry.clone()),
+            engine,
+            modules: relink::Modules::default(),
         }
     }
 

@@ -316,9 +316,40 @@ fn a_backup_without_task_folders_names_the_path() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Every module of the cell checks with `rapidvc check` (every inter-task name is known).
+/// Every module of the cell checks with `rapidvc check` (every inter-task name is known),
+/// task by task and as the backup folder; a PERS of two types is found by the check too.
 #[test]
 fn the_cell_modules_check() {
+    let ended = run_in(&repo(), &["check", "tests/tasks/cell"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("checked 4 files: 0 errors"),
+        "{}",
+        ended.stderr
+    );
+    let (dir, _) = system(
+        "checkpers",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num p := 1;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS string p := \"x\";\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    let ended = run_in(&dir, &["check", "T_ROB1=t_rob1.mod", "T_B=t_b.mod"]);
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("pers_type_mismatch"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
     for task in ["TASK1", "TASK2", "TASK3"] {
         let dir = repo().join("tests/tasks/cell/RAPID").join(task);
         let ended = run_in(&repo(), &["check", dir.to_str().unwrap()]);
@@ -390,5 +421,22 @@ fn an_error_or_exit_in_one_task_stops_the_others() {
         ended.stderr.contains("task T_B: program ended by EXIT"),
         "{}",
         ended.stderr
+    );
+}
+
+/// Arrays travel with their sizes (`rmqheader`), a receiver of other sizes gets
+/// `ERR_RMQ_DIM`, and `WaitSyncTask \\InPos` also waits for the robot to stand in position.
+#[test]
+fn rmq_arrays_and_wait_sync_in_position() {
+    let a = "MODULE a\n  VAR rmqslot b;\n  VAR num arr{3} := [1, 2, 3];\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQFindSlot b, \"T_B\";\n    RMQSendMessage b, arr;\n    RMQSendMessage b, arr;\n    MoveAbsJ [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, z10, tool0;\n    WaitSyncTask \\InPos, s, both;\n    TPWrite \"a in pos\";\n  ENDPROC\nENDMODULE\n";
+    let b = "MODULE b\n  VAR rmqmessage m;\n  VAR num got{3};\n  VAR num two{2};\n  VAR rmqheader h;\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQReadWait m;\n    RMQGetMsgHeader m \\Header:=h;\n    RMQGetMsgData m, got;\n    TPWrite \"b got \" + ValToStr(got{3}) + \" \" + h.datatype + \" ndim \" + ValToStr(h.ndim) + \" dim1 \" + ValToStr(h.dim1);\n    RMQReadWait m;\n    RMQGetMsgData m, two;\n  ERROR\n    TPWrite \"b: \" \\Num:=ERRNO;\n    WaitSyncTask s, both;\n    TPWrite \"b synced\";\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("arrays", &[("T_ROB1", MOTION, a), ("T_B", "", b)]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let dim = rapidvc::ir::errnum::ERR_RMQ_DIM;
+    assert_eq!(
+        ended.stdout,
+        format!(
+            "[T_B] b got 3 num ndim 1 dim1 3\n[T_B] b: {dim}\n[T_B] b synced\n[T_ROB1] a in pos\n"
+        )
     );
 }

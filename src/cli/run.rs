@@ -249,6 +249,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let tee = view.as_ref().map(view_options::ViewRun::session);
+    let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -265,6 +266,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             print_output(o);
         });
     let mut it = Interp::new(prog, &registry, Box::new(host));
+    it.set_module_loader(Box::new(loader));
     it.set_mass_storage(Arc::new(MassStorage::new(args.home.clone())));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
@@ -534,7 +536,8 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
             }
             Err(e) => {
                 let _ = std::io::stdout().flush();
-                render::runtime_error(&e, sources);
+                // An error in a module loaded while the program ran points into it.
+                render::runtime_error(&e, it.loaded_sources().unwrap_or(sources));
                 return (ExitCode::from(1), false);
             }
         }

@@ -2,6 +2,11 @@
 //! the host each task's interpreter runs on ([`TaskedHost`]), synchronisation points
 //! (`WaitSyncTask`) and the RAPID message queues.
 //!
+//! In real time ([`Scheduler::use_real_time`], for a controller that stays up) the same
+//! rule holds, except that waiting takes real time: the motion task's controller runs on
+//! its real-time clock, and when the motion task does not wait the task with the earliest
+//! deadline sleeps until it.
+//!
 //! # The scheduling rule (virtual time)
 //!
 //! Every task has its own interpreter on its own thread, but only the task holding the
@@ -53,7 +58,7 @@ use crate::interp::host::{
 use crate::interp::{Host, HostError};
 use crate::robot::command::{MotionCommand, RobTarget};
 use crate::robot::{JointsDeg, Pose, ToolData, WobjData};
-use crate::time::RobotTime;
+use crate::time::{Clock, RobotTime};
 
 /// Statements a task runs before it hands the baton over (when it does not wait earlier).
 pub const DEFAULT_SLICE: u64 = 1000;
@@ -91,7 +96,6 @@ struct SyncPoint {
     generation: u64,
 }
 
-#[derive(Debug)]
 struct State {
     slots: Vec<Slot>,
     /// The task that may run.
@@ -110,18 +114,30 @@ struct State {
     halted_because: Option<String>,
     sync: HashMap<String, SyncPoint>,
     next_seq: u64,
-    /// Names of the tasks that do not run (idle) but have numbers.
-    idle: Vec<(i32, String)>,
+    /// The tasks that do not run (idle) but have numbers.
+    idle: Vec<TaskSpec>,
+    /// Real time: the clock the tasks without a robot read and sleep on.
+    real: Option<Arc<dyn Clock>>,
 }
 
 /// The scheduler of one system's tasks (see the module docs).
-#[derive(Debug)]
 pub struct Scheduler {
     state: Mutex<State>,
     turn: Condvar,
     halt: Arc<AtomicBool>,
     /// A stop request from outside (Ctrl-C), turned into `halt` at the next wait or slice.
     outside: Option<Arc<AtomicBool>>,
+}
+
+impl std::fmt::Debug for Scheduler {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let st = self.lock();
+        f.debug_struct("Scheduler")
+            .field("tasks", &st.slots.len())
+            .field("baton", &st.baton)
+            .field("now", &st.now)
+            .finish_non_exhaustive()
+    }
 }
 
 impl Scheduler {
@@ -157,10 +173,8 @@ impl Scheduler {
                 halted_because: None,
                 sync: HashMap::new(),
                 next_seq: 0,
-                idle: idle
-                    .into_iter()
-                    .map(|s| (s.number, s.config.name))
-                    .collect(),
+                idle,
+                real: None,
             }),
             turn: Condvar::new(),
             halt,
@@ -174,6 +188,20 @@ impl Scheduler {
             // A task thread that panicked holds no invariant the others need.
             Err(poisoned) => poisoned.into_inner(),
         }
+    }
+
+    /// Every task of the system in task-number order: its spec, and whether it runs (has a
+    /// program) and has ended (for a controller's task list).
+    pub fn task_list(&self) -> Vec<(TaskSpec, bool, bool)> {
+        let st = self.lock();
+        let mut v: Vec<(TaskSpec, bool, bool)> = st
+            .slots
+            .iter()
+            .map(|s| (s.spec.clone(), true, s.run == Run::Done))
+            .chain(st.idle.iter().map(|s| (s.clone(), false, false)))
+            .collect();
+        v.sort_by_key(|t| t.0.number);
+        v
     }
 
     /// Number of tasks that run.
@@ -226,6 +254,19 @@ impl Scheduler {
     /// Why the run was stopped from inside, if it was.
     pub fn halted_because(&self) -> Option<String> {
         self.lock().halted_because.clone()
+    }
+
+    /// Run in real time on `clock` (the motion task's controller runs in real time too):
+    /// when every task waits and the motion task does not, the task with the earliest
+    /// deadline sleeps until it instead of the time jumping.
+    pub fn use_real_time(&self, clock: Arc<dyn Clock>) {
+        self.lock().real = Some(clock);
+    }
+
+    /// The real-time clock's time (`None` in virtual time).
+    fn clock_now(&self) -> Option<RobotTime> {
+        let clock = self.lock().real.clone()?;
+        Some(clock.now())
     }
 
     /// The robot time the tasks share.
@@ -336,6 +377,13 @@ impl Scheduler {
                 st.advance = Some(target);
                 return;
             }
+            if st.real.is_some()
+                && let Some(first) = st.slots.iter().position(|s| s.run == Run::Waiting(target))
+            {
+                st.baton = Some(first);
+                st.advance = Some(target);
+                return;
+            }
             st.now = st.now.max(target);
             // After a time step the motion task comes first, then round robin: start the
             // search just before it.
@@ -379,15 +427,6 @@ impl TaskHost for TaskHandle {
 
     fn task_number(&self) -> i32 {
         self.spec().map_or(0, |s| s.number)
-    }
-
-    fn task_name_of(&self, n: i32) -> Option<String> {
-        let st = self.sched.lock();
-        st.slots
-            .iter()
-            .find(|s| s.spec.number == n)
-            .map(|s| s.spec.config.name.clone())
-            .or_else(|| st.idle.iter().find(|i| i.0 == n).map(|i| i.1.clone()))
     }
 
     fn mec_task_number(&self) -> i32 {
@@ -524,14 +563,6 @@ impl TaskHost for TaskHandle {
             s.queue.clear();
         }
     }
-
-    fn rmq_max_size(&self, slot: i32) -> Option<usize> {
-        let st = self.sched.lock();
-        st.slots
-            .iter()
-            .find(|s| s.spec.number == slot)
-            .map(|s| s.spec.config.rmq_max_msg_size)
-    }
 }
 
 /// The host of one task: the task's own host (the controller's for the motion task, a
@@ -583,6 +614,20 @@ impl TaskedHost {
         self.inner.as_mut()
     }
 
+    /// Real time: sleep until `until` on the scheduler's clock, in short slices so that a
+    /// stop request ends the sleep.
+    fn sleep_until(&self, until: RobotTime) -> Result<RobotTime, HostError> {
+        let sched = &self.task.sched;
+        while let Some(now) = sched.clock_now() {
+            if now >= until || sched.check_outside() {
+                return Ok(now);
+            }
+            let left = until.saturating_since(now);
+            std::thread::sleep(left.min(std::time::Duration::from_millis(10)));
+        }
+        Ok(until)
+    }
+
     fn not_motion(&self, what: &str) -> HostError {
         HostError::fatal(format!(
             "{what}: task {} is not a motion task: only the motion task (-MotionTask in SYS.cfg) moves the robot",
@@ -624,7 +669,8 @@ impl Host for TaskedHost {
         if self.motion {
             self.inner.now()
         } else {
-            self.task.sched.now()
+            let sched = &self.task.sched;
+            sched.clock_now().unwrap_or_else(|| sched.now())
         }
     }
 
@@ -646,12 +692,22 @@ impl Host for TaskedHost {
             match self.switch(Run::Waiting(deadline)) {
                 None => return Ok(self.now()),
                 Some(target) => {
-                    // The motion task moves the robot up to the next deadline of any task.
+                    // The motion task moves the robot up to the next deadline of any task;
+                    // in real time without a waiting motion task, the task with the
+                    // earliest deadline sleeps until it.
                     let until = target.min(deadline);
-                    let t = self.inner.wait_until(until);
+                    let t = if self.motion {
+                        self.inner.wait_until(until)
+                    } else {
+                        self.sleep_until(until)
+                    };
                     let sched = Arc::clone(&self.task.sched);
+                    let now = if self.motion {
+                        self.inner.now()
+                    } else {
+                        sched.clock_now().unwrap_or(until)
+                    };
                     let mut st = sched.lock();
-                    let now = self.inner.now();
                     st.now = st.now.max(now);
                     let ended_early = now < until;
                     if t.is_err() || now >= deadline || ended_early {
@@ -791,6 +847,14 @@ impl Host for TaskedHost {
         self.inner.system()
     }
 
+    fn position_events(&mut self) -> Option<&mut dyn crate::interp::host::PositionEventHost> {
+        if self.motion {
+            self.inner.position_events()
+        } else {
+            None
+        }
+    }
+
     fn tasks(&mut self) -> Option<&mut dyn TaskHost> {
         Some(&mut self.task)
     }
@@ -835,4 +899,82 @@ pub fn run_tasks<R: Send>(
             })
             .collect()
     })
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+mod tests {
+    use super::*;
+    use crate::interp::VirtualHost;
+
+    fn spec(name: &str, number: i32) -> TaskSpec {
+        TaskSpec {
+            config: TaskConfig::new(name, TaskType::Normal, false),
+            number,
+        }
+    }
+
+    /// Two tasks without a robot wait; each wakes at its deadline, in deadline order, and
+    /// the shared time is the later deadline at the end. Returns the wake-up order.
+    fn two_waits(sched: &Arc<Scheduler>) -> Vec<(usize, RobotTime)> {
+        let log = Arc::new(Mutex::new(Vec::new()));
+        let bodies: Vec<Box<dyn FnOnce() + Send>> = [0.05, 0.02]
+            .into_iter()
+            .enumerate()
+            .map(|(me, secs)| {
+                let mut host = TaskedHost::new(
+                    Arc::clone(sched),
+                    me,
+                    Box::new(VirtualHost::new()),
+                    true,
+                    None,
+                );
+                let log = Arc::clone(&log);
+                Box::new(move || {
+                    let t = host.wait_until(RobotTime::from_secs_f64(secs)).unwrap();
+                    log.lock().unwrap().push((me, t));
+                }) as Box<dyn FnOnce() + Send>
+            })
+            .collect();
+        let ends = run_tasks(sched, bodies);
+        assert!(ends.iter().all(Option::is_some));
+        log.lock().unwrap().clone()
+    }
+
+    #[test]
+    fn virtual_time_jumps_to_each_deadline_in_order() {
+        let halt = Arc::new(AtomicBool::new(false));
+        let sched = Scheduler::new(
+            vec![spec("A", 1), spec("B", 3)],
+            vec![spec("IDLE", 2)],
+            halt,
+            None,
+        );
+        let order = two_waits(&sched);
+        let list: Vec<(i32, bool, bool)> = sched
+            .task_list()
+            .iter()
+            .map(|t| (t.0.number, t.1, t.2))
+            .collect();
+        assert_eq!(list, [(1, true, true), (2, false, false), (3, true, true)]);
+        assert_eq!(
+            order,
+            [
+                (1, RobotTime::from_secs_f64(0.02)),
+                (0, RobotTime::from_secs_f64(0.05))
+            ]
+        );
+    }
+
+    #[test]
+    fn real_time_sleeps_until_each_deadline() {
+        let halt = Arc::new(AtomicBool::new(false));
+        let sched = Scheduler::new(vec![spec("A", 1), spec("B", 2)], Vec::new(), halt, None);
+        let clock = Arc::new(crate::controller::MonotonicClock::new());
+        sched.use_real_time(clock.clone());
+        let order = two_waits(&sched);
+        assert_eq!(order.iter().map(|o| o.0).collect::<Vec<_>>(), [1, 0]);
+        assert!(order[0].1 >= RobotTime::from_secs_f64(0.02));
+        assert!(clock.now() >= RobotTime::from_secs_f64(0.05));
+    }
 }

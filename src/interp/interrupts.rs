@@ -126,6 +126,16 @@ pub(crate) struct Interrupts {
 }
 
 impl Interrupts {
+    /// A connected TRAP for which `keep` is false (the program is about to lose it).
+    pub fn traps_not_in(&self, keep: impl Fn(RoutineId) -> bool) -> Option<RoutineId> {
+        self.connected.values().copied().find(|&r| !keep(r))
+    }
+
+    /// Renumber the connected TRAPs (the program was relinked).
+    pub fn remap_traps(&mut self, f: impl Fn(RoutineId) -> RoutineId) {
+        self.connected.values_mut().for_each(|r| *r = f(*r));
+    }
+
     /// Is a TRAP routine running (`ExecLevel`)?
     pub fn in_trap(&self) -> bool {
         self.in_trap

@@ -128,6 +128,8 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
         &[("running", "bool"), ("started", "dnum"), ("acc", "dnum")],
     ),
     ("egmident", &[("id", "num")]),
+    // A correction generator (`CorrCon`): its number, 0 when not connected.
+    ("corrdescr", &[("id", "num")]),
     ("mecunit", &[("name", "string")]),
     ("signaldi", &[("name", "string")]),
     ("signaldo", &[("name", "string")]),
@@ -140,6 +142,20 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     // U+0000–U+00FF of a string (`functions::raw_bytes`).
     ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
+    // A position event (`interp/builtins/motion_events/trigg.rs`).
+    (
+        "triggdata",
+        &[
+            ("kind", "num"),
+            ("distance", "num"),
+            ("start", "bool"),
+            ("time", "bool"),
+            ("lead", "num"),
+            ("signal", "string"),
+            ("value", "dnum"),
+            ("intno", "num"),
+        ],
+    ),
     // Several tasks: a synchronisation point (named by its variable), an RMQ client, and a
     // RAPID message (header, data as literal text, sender, \UserDef, valid).
     ("syncident", &[("id", "num")]),
@@ -158,21 +174,10 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
             ("valid", "bool"),
         ],
     ),
-    // A position event (`interp/builtins/motion_events/trigg.rs`).
-    (
-        "triggdata",
-        &[
-            ("kind", "num"),
-            ("distance", "num"),
-            ("start", "bool"),
-            ("time", "bool"),
-            ("lead", "num"),
-            ("signal", "string"),
-            ("value", "dnum"),
-            ("intno", "num"),
-        ],
-    ),
     ("dir", &[("id", "num")]),
+    // A load session of `StartLoad`/`WaitLoad` and a block of `GetNextSym`/`SetDataVal`.
+    ("loadsession", &[("id", "num")]),
+    ("datapos", &[("id", "num")]),
     (
         "trapdata",
         &[

@@ -143,7 +143,12 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         .iter()
         .map(|c| TaskSpec {
             config: c.clone(),
-            number: 0,
+            number: config
+                .sys
+                .tasks
+                .iter()
+                .position(|t| t.name == c.name)
+                .map_or(0, |i| i as i32 + 1),
         })
         .collect();
     let sched = Scheduler::new(
@@ -190,6 +195,8 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
             labels,
             Some(args.max_time),
         );
+        // `Load`/`UnLoad` in this task rebuild this task's program.
+        let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
         let registry = registry.clone();
         let storage = Arc::clone(&storage);
         let store = Arc::clone(&store);
@@ -210,6 +217,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         let announce = args.trace.is_some() || args.plot.is_some();
         bodies.push(Box::new(move || {
             let mut it = Interp::new(prog, &registry, Box::new(host));
+            it.set_module_loader(Box::new(loader));
             it.set_mass_storage(storage);
             it.set_budget(max_steps);
             it.set_stop_request(Arc::clone(&halt));

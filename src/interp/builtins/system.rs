@@ -438,6 +438,32 @@ pub(crate) fn note_move_data(cx: &mut Ctx<'_>, tool: usize, wobj: usize) {
     }
 }
 
+/// Make the persistent of argument `arg` the active data of `kind` (`GripLoad`).
+pub(crate) fn note_active(cx: &mut Ctx<'_>, kind: SysDataKind, arg: usize) {
+    let name = pers_arg(cx, arg).map(|g| cx.p.globals[g].name.clone());
+    if let (Some(n), Some(s)) = (name, cx.host().system()) {
+        s.info.active.set(kind, &n);
+    }
+}
+
+/// The value of the active data of `kind` (`CTool`, `CWObj`): the persistent of that name.
+pub(crate) fn active_value(cx: &mut Ctx<'_>, kind: SysDataKind) -> Exec<Value> {
+    let active = with_system(cx, |s, _| s.info.active.get(kind).to_string())?;
+    let type_name = match kind {
+        SysDataKind::Tool => "tooldata",
+        SysDataKind::Wobj => "wobjdata",
+        SysDataKind::Load => "loaddata",
+    };
+    let ty = cx.p.types.lookup(type_name).map(crate::ir::Ty::scalar);
+    match ty.and_then(|ty| find_pers(cx, &active, ty)) {
+        Some(g) => Ok(cx.it.globals[g].clone()),
+        None => Err(cx.error(
+            errnum::ERR_REFUNKDAT,
+            format!("the active {type_name} `{active}` is not a persistent of this program"),
+        )),
+    }
+}
+
 // ----- configuration database -----
 
 fn cfg_error(cx: &Ctx<'_>, e: CfgError) -> Unwind {

@@ -49,11 +49,11 @@ pub(super) fn register(r: &mut Registry) {
         rmq_find_slot,
     );
     r.add(
-        r"PROC RMQSendMessage(VAR rmqslot Slot, anytype SendData, \num UserDef)",
+        r"PROC RMQSendMessage(VAR rmqslot Slot, anydata SendData, \num UserDef)",
         rmq_send_message,
     );
     r.add(
-        r"PROC RMQSendWait(VAR rmqslot Slot, anytype SendData, VAR rmqmessage Message, REF anytype ReceiveDataType, \num UserDef, \num TimeOut)",
+        r"PROC RMQSendWait(VAR rmqslot Slot, anydata SendData, VAR rmqmessage Message, REF anydata ReceiveDataType, \num UserDef, \num TimeOut)",
         rmq_send_wait,
     );
     r.add(
@@ -65,11 +65,11 @@ pub(super) fn register(r: &mut Registry) {
         rmq_get_msg_header,
     );
     r.add(
-        "PROC RMQGetMsgData(VAR rmqmessage Message, VAR anytype Data)",
+        "PROC RMQGetMsgData(VAR rmqmessage Message, VAR anydata Data)",
         rmq_get_msg_data,
     );
     r.add(
-        "PROC IRMQMessage(REF anytype InterruptDataType, VAR intnum Interrupt)",
+        "PROC IRMQMessage(REF anydata InterruptDataType, VAR intnum Interrupt)",
         irmq_message,
     );
     r.add(

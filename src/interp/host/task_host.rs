@@ -32,9 +32,6 @@ pub trait TaskHost {
     /// The running task's number (1-based, SYS.cfg order).
     fn task_number(&self) -> i32;
 
-    /// The name of task number `n`, `None` when there is none.
-    fn task_name_of(&self, n: i32) -> Option<String>;
-
     /// The number of the motion task whose robot this task moves (`GetTaskName(\MecTaskNo)`):
     /// its own number for the motion task, else the motion task's.
     fn mec_task_number(&self) -> i32;
@@ -72,7 +69,4 @@ pub trait TaskHost {
 
     /// Empty this task's queue (`RMQEmptyQueue`).
     fn rmq_empty(&mut self);
-
-    /// Largest message this task may send to `slot` (its receiver's `-RmqMaxMsgSize`).
-    fn rmq_max_size(&self, slot: i32) -> Option<usize>;
 }
