@@ -17,6 +17,7 @@ mod render;
 pub mod robots;
 pub mod run;
 pub mod sensor;
+pub mod serve;
 mod test;
 
 /// rapidvc — an open, headless virtual ABB robot controller (RAPID + EGM).
@@ -35,6 +36,9 @@ pub enum Command {
     Check(check::CheckArgs),
     /// Run a RAPID program on the virtual controller (TP output on stdout).
     Run(Box<run::RunArgs>),
+    /// Boot a controller that stays up: run the program in real time, started, stopped and
+    /// inspected over Robot Web Services 1.0 (plain HTTP, as on an IRC5), until Ctrl-C.
+    Serve(Box<serve::ServeArgs>),
     /// Run every `PROC test_*` of RAPID test modules (`Assert cond \Msg:="…"`).
     Test(test::TestArgs),
     /// Print the syntax tree of one file (for debugging the parser).
@@ -55,6 +59,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(args),
         Command::DumpAst(args) => dump_ast::run(args),
         Command::Run(args) => run::run(*args),
+        Command::Serve(args) => serve::run(*args),
         Command::Robots(args) => robots::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Sensor(args) => sensor::run(*args),

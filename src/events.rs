@@ -120,6 +120,19 @@ const UDPUC_COMM: Effect = Effect::Raises(&["ERR_UDPUC_COMM"]);
 const ROBLIMIT: Effect = Effect::Raises(&["ERR_ROBLIMIT"]);
 
 events! {
+    /// `rapidvc serve`: the program pointer was moved to the entry routine (RWS `resetpp`,
+    /// or a program run ended).
+    PpReset = 10002, AbbReported, Info, "Program pointer has been reset", Effect::Logged;
+    /// `rapidvc serve`: the motors were switched off (RWS `ctrlstate`); a running program
+    /// stops.
+    MotorsOff = 10010, AbbReported, Info, "Motors OFF state", Effect::Logged;
+    /// `rapidvc serve`: the motors were switched on.
+    MotorsOn = 10011, AbbReported, Info, "Motors ON state", Effect::Logged;
+    /// `rapidvc serve`: the program was started (RWS `start`).
+    ProgramStarted = 10150, AbbReported, Info, "Program started", Effect::Logged;
+    /// `rapidvc serve`: the program stopped (RWS `stop`, motors off, a mode change, the end
+    /// of a single cycle, `Stop`, `EXIT`).
+    ProgramStopped = 10151, AbbReported, Info, "Program stopped", Effect::Logged;
     /// No valid sensor message within the run's `\CommTimeout`. The EGM movement ends
     /// (ramping down) and raises `ERR_UDPUC_COMM`; after `\NoWaitCond` it stops the program.
     CommTimeout = 41822, Abb, Error, "No data from the UdpUc device", UDPUC_COMM;
@@ -152,6 +165,10 @@ events! {
     /// Path correction (EGMMoveL/EGMMoveC) with an External Motion Interface Data profile
     /// that is not of Level 2.
     CyclicError = 50452, Abb, Error, "External Interface Cyclic Error", Effect::Stops;
+    /// `ErrWrite` without `\W`: the program's own error entry.
+    ErrWriteError = 80001, AbbReported, Error, "ErrWrite", Effect::Logged;
+    /// `ErrWrite \W`: the program's own warning entry.
+    ErrWriteWarning = 80002, AbbReported, Warning, "ErrWrite warning", Effect::Logged;
     /// A datagram from another address than the device's remote address (or, with the
     /// default filter, from the sensor's host at another port); it is dropped.
     UnexpectedSender = 90101, Rapidvc, Warning, "EGM datagram from an unexpected address",
@@ -234,4 +251,10 @@ events! {
     /// A path correction the controller does not use (too large, or too old); the previous
     /// correction stays.
     CorrectionRejected = 90132, Rapidvc, Warning, "EGM path correction rejected", Effect::Logged;
+    /// `rapidvc serve`: an event the interpreter or controller printed that has no number of
+    /// its own (an interrupt queue full, a file note, a motion warning without a number).
+    ProgramEvent = 90200, Rapidvc, Info, "Program event", Effect::Logged;
+    /// `rapidvc serve`: the program stopped on an error no handler took; the description
+    /// holds the error and where it happened.
+    ProgramError = 90201, Rapidvc, Error, "Program stopped on an error", Effect::Stops;
 }

@@ -34,6 +34,7 @@
 pub mod builtins;
 mod call;
 mod compile;
+pub mod data_access;
 pub mod error;
 mod expr;
 pub mod files;
@@ -110,6 +111,9 @@ pub enum HookAction {
     Continue,
     /// Abort execution (reported as an `Aborted` run-time error).
     Abort,
+    /// Stop the program as `Stop` does (the run ends with [`Outcome::Stopped`]); for the
+    /// service hook, e.g. when a service moves the program pointer to main.
+    Stop,
 }
 
 /// What the before-statement hook sees.
@@ -127,6 +131,15 @@ pub struct StmtEvent<'a> {
 
 /// A before-statement hook (stepping, tracing, tests).
 pub type StmtHook = Box<dyn FnMut(&StmtEvent<'_>) -> HookAction + Send>;
+
+/// The service hook: called with the interpreter between statements and on every turn of a
+/// wait (see [`Interp::set_service_hook`]). It may read and write module data, and block
+/// (a stopped controller keeps its program pointer by not returning).
+pub type ServiceHook = Box<dyn FnMut(&mut Interp) -> HookAction + Send>;
+
+/// With a service hook, a wait hands control back to the interpreter at least this often,
+/// so the hook runs while the program waits.
+pub const SERVICE_WAIT_SLICE_S: f64 = 0.01;
 
 /// One activation record.
 #[derive(Debug)]
@@ -194,6 +207,8 @@ pub struct Interp {
     next_poll: u64,
     budget: Option<u64>,
     hook: Option<StmtHook>,
+    /// Called between statements and in waits (services of a controller that stays up).
+    service: Option<ServiceHook>,
     /// Set from outside (Ctrl-C) to stop the program as `Stop` does.
     stop: Option<Arc<AtomicBool>>,
     initialised: bool,
@@ -279,6 +294,7 @@ impl Interp {
             next_poll: u64::MAX,
             budget: None,
             hook: None,
+            service: None,
             stop: None,
             initialised: false,
             module_values,
@@ -322,6 +338,28 @@ impl Interp {
     pub fn set_hook(&mut self, hook: Option<StmtHook>) {
         self.hook = hook;
         self.update_poll();
+    }
+
+    /// Install the service hook: called with the interpreter before every statement and on
+    /// every turn of a wait (waits then last at most [`SERVICE_WAIT_SLICE_S`] per turn).
+    /// [`HookAction::Stop`] stops the program as `Stop` does; [`HookAction::Abort`] aborts.
+    pub fn set_service_hook(&mut self, hook: Option<ServiceHook>) {
+        self.service = hook;
+        self.update_poll();
+    }
+
+    /// Run the service hook, if any (between statements and in waits).
+    fn run_service_hook(&mut self) -> HookAction {
+        match self.service.take() {
+            Some(mut h) => {
+                let action = h(self);
+                if self.service.is_none() {
+                    self.service = Some(h);
+                }
+                action
+            }
+            None => HookAction::Continue,
+        }
     }
 
     /// Stop the program as `Stop` does (the run ends with [`Outcome::Stopped`]) once `flag`
@@ -565,7 +603,7 @@ impl Interp {
 
     /// Recompute when the per-statement slow path must run.
     fn update_poll(&mut self) {
-        let every = self.hook.is_some() || self.ints.armed();
+        let every = self.hook.is_some() || self.service.is_some() || self.ints.armed();
         self.next_poll = if every {
             self.steps + 1
         } else {

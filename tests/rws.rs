@@ -2,28 +2,24 @@
 //! ABB's status codes and error bodies, bad input of every kind, many sessions, subscriptions
 //! over WebSocket and their clean-up.
 //!
-//! The controller side is `tests/support/fake_controller.rs`, a stand-in that answers the
-//! service contract from fixed state until `rapidvc serve` serves it; these tests then move
-//! to the real controller. Every test ends by itself (read time-outs on every socket).
+//! The controller is a real `rapidvc serve` of `tests/serve/` (its program counts cycles and
+//! copies DI1 to DO_ECHO) on a free loopback port. Every test ends by itself (read time-outs
+//! on every socket; the controller is killed when its guard is dropped).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
-use rapidvc_testkit::fake_controller;
 use rapidvc_testkit::rws_http;
+use rapidvc_testkit::serve::Serve;
 
 use std::time::{Duration, Instant};
 
-use fake_controller::{FakeController, Inject};
-use rapidvc::services::rws::{RwsOptions, RwsServer, router};
 use rws_http::{Client, raw};
 
-fn start(fake: &FakeController, opts: RwsOptions) -> RwsServer {
-    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    let max = opts.max_connections;
-    RwsServer::start(l, router(fake.handle(), opts), max).unwrap()
+fn start(tag: &str) -> Serve {
+    Serve::start(rapidvc_testkit::rapidvc!(), tag, "tests/serve", &[])
 }
 
-fn login(srv: &RwsServer) -> Client {
-    let mut c = Client::new(srv.local_addr(), "Default User", "robotics");
+fn login(srv: &Serve) -> Client {
+    let mut c = Client::new(srv.addr, "Default User", "robotics");
     let r = c.get("/rw/panel/ctrlstate?json=1");
     assert_eq!(r.status, 200, "{}", r.text());
     c
@@ -31,8 +27,7 @@ fn login(srv: &RwsServer) -> Client {
 
 #[test]
 fn no_resource_answers_without_login() {
-    let fake = FakeController::start("nologin");
-    let srv = start(&fake, RwsOptions::default());
+    let srv = start("nologin");
     for path in [
         "/rw/panel/ctrlstate",
         "/rw/rapid/execution?json=1",
@@ -42,7 +37,7 @@ fn no_resource_answers_without_login() {
         "/logout",
     ] {
         let r = raw(
-            srv.local_addr(),
+            srv.addr,
             format!("GET {path} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
         )
         .unwrap();
@@ -61,9 +56,8 @@ fn no_resource_answers_without_login() {
 
 #[test]
 fn wrong_credentials_get_401_even_with_a_valid_cookie() {
-    let fake = FakeController::start("wrongpw");
-    let srv = start(&fake, RwsOptions::default());
-    let mut bad = Client::new(srv.local_addr(), "Default User", "wrong");
+    let srv = start("wrongpw");
+    let mut bad = Client::new(srv.addr, "Default User", "wrong");
     let r = bad.get("/rw/panel/ctrlstate?json=1");
     assert_eq!(r.status, 401);
     assert_eq!(r.header("content-type"), Some("application/json"));
@@ -75,7 +69,7 @@ fn wrong_credentials_get_401_even_with_a_valid_cookie() {
             .contains("password")
     );
     assert!(bad.cookie("ABBCX").is_none());
-    let mut other = Client::new(srv.local_addr(), "Admin", "robotics");
+    let mut other = Client::new(srv.addr, "Admin", "robotics");
     assert_eq!(other.get("/rw/system").status, 401);
     // A good session's cookie does not excuse wrong credentials sent with it.
     let good = login(&srv);
@@ -90,8 +84,7 @@ fn wrong_credentials_get_401_even_with_a_valid_cookie() {
 
 #[test]
 fn the_session_cookie_replaces_credentials_until_logout() {
-    let fake = FakeController::start("cookie");
-    let srv = start(&fake, RwsOptions::default());
+    let srv = start("cookie");
     let mut c = login(&srv);
     assert!(c.cookie("ABBCX").is_some());
     assert!(c.cookie("-http-session-").is_some());
@@ -111,8 +104,7 @@ fn the_session_cookie_replaces_credentials_until_logout() {
 
 #[test]
 fn both_representations_carry_abb_classes() {
-    let fake = FakeController::start("repr");
-    let srv = start(&fake, RwsOptions::default());
+    let srv = start("repr");
     let mut c = login(&srv);
     let x = c.get("/rw/rapid/tasks");
     assert_eq!(x.status, 200);
@@ -131,9 +123,9 @@ fn both_representations_carry_abb_classes() {
     assert_eq!(j.header("content-type"), Some("application/json"));
     let v = j.json();
     assert_eq!(v["_embedded"]["_state"][0]["_type"], "rap-task-li");
-    assert_eq!(v["_embedded"]["_state"][1]["name"], "T_LOG");
+    assert_eq!(v["_embedded"]["_state"][0]["name"], "T_ROB1");
     let sys = c.get("/rw/system").text();
-    assert!(sys.contains("<span class=\"rwversionname\">6.08.01.00</span>"));
+    assert!(sys.contains("<span class=\"rwversionname\">6.08.00.00</span>"));
     assert!(sys.contains("<span class=\"option\">689-1 Externally Guided Motion (EGM)</span>"));
     assert!(
         c.get("/ctrl")
@@ -159,8 +151,7 @@ fn both_representations_carry_abb_classes() {
 
 #[test]
 fn writes_answer_204_and_reach_the_controller() {
-    let fake = FakeController::start("writes");
-    let srv = start(&fake, RwsOptions::default());
+    let srv = start("writes");
     let mut c = login(&srv);
     let r = c.post(
         "/rw/iosystem/signals/Local/DRV_1/DO1?action=set",
@@ -192,10 +183,6 @@ fn writes_answer_204_and_reach_the_controller() {
     };
     assert_eq!(put("one"), 201);
     assert_eq!(put("two"), 200);
-    assert_eq!(
-        std::fs::read_to_string(fake.dir.join("ramdisk/a.txt")).unwrap(),
-        "two"
-    );
     assert_eq!(c.get("/fileservice/$RAMDISK/a.txt").text(), "two");
     let l = c.get("/fileservice/$RAMDISK?json=1").json();
     assert_eq!(l["_embedded"]["_state"][0]["_title"], "a.txt");
@@ -209,8 +196,7 @@ fn writes_answer_204_and_reach_the_controller() {
 
 #[test]
 fn bad_input_gets_abb_errors_and_the_server_stays_up() {
-    let fake = FakeController::start("bad");
-    let srv = start(&fake, RwsOptions::default());
+    let srv = start("bad");
     let mut c = login(&srv);
     let code = |r: &rws_http::Resp| r.json()["_embedded"]["status"]["code"].as_i64().unwrap();
     // Unknown resources: 404 with ABB's body in both representations.
@@ -282,7 +268,7 @@ fn bad_input_gets_abb_errors_and_the_server_stays_up() {
         c.request("PUT", "/fileservice/$HOME/big.bin", &huge).status,
         413
     );
-    assert!(!fake.dir.join("home/big.bin").exists());
+    assert!(!srv.home.join("big.bin").exists());
     // Malformed HTTP: answered (400) or closed, and the server keeps serving.
     for junk in [
         &b"GARBAGE\r\n\r\n"[..],
@@ -290,7 +276,7 @@ fn bad_input_gets_abb_errors_and_the_server_stays_up() {
         b"\x00\x01\x02\x03\r\n\r\n",
         b"GET /rw/system HTTP/1.1\r\nContent-Length: nope\r\n\r\n",
     ] {
-        if let Ok(r) = raw(srv.local_addr(), junk) {
+        if let Ok(r) = raw(srv.addr, junk) {
             assert!(r.status >= 400, "{junk:?}");
         }
     }
@@ -298,7 +284,7 @@ fn bad_input_gets_abb_errors_and_the_server_stays_up() {
         "GET /rw/system HTTP/1.1\r\nHost: x\r\nX-Long: {}\r\n\r\n",
         "a".repeat(1 << 20)
     );
-    if let Ok(r) = raw(srv.local_addr(), long_header.as_bytes()) {
+    if let Ok(r) = raw(srv.addr, long_header.as_bytes()) {
         assert!(r.status >= 400);
     }
     assert_eq!(c.get("/rw/panel/ctrlstate?json=1").status, 200);
@@ -306,14 +292,14 @@ fn bad_input_gets_abb_errors_and_the_server_stays_up() {
 
 #[test]
 fn a_thousand_sessions_stay_bounded() {
-    let fake = FakeController::start("sessions");
-    let opts = RwsOptions {
-        max_sessions: 50,
-        ..RwsOptions::default()
-    };
-    let srv = start(&fake, opts);
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "sessions",
+        "tests/serve",
+        &["--rws-sessions", "50"],
+    );
     let first = login(&srv);
-    let addr = srv.local_addr();
+    let addr = srv.addr;
     let threads: Vec<_> = (0..8)
         .map(|_| {
             std::thread::spawn(move || {
@@ -346,15 +332,14 @@ fn subscriptions_deliver_events_over_the_websocket_and_are_cleaned_up() {
     use futures_util::StreamExt;
     use tokio_tungstenite::tungstenite::client::IntoClientRequest;
 
-    let fake = FakeController::start("subs");
-    let opts = RwsOptions {
-        max_subscriptions: 3,
-        subscription_unclaimed: Duration::from_millis(500),
-        ..RwsOptions::default()
-    };
-    let srv = start(&fake, opts);
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "subs",
+        "tests/serve",
+        &["--rws-subscriptions", "3", "--rws-unclaimed", "0.5"],
+    );
     let mut c = login(&srv);
-    let form = "resources=1&1=/rw/iosystem/signals/Local/DRV_1/DO1;state&1-p=1\
+    let form = "resources=1&1=/rw/iosystem/signals/Local/DRV_1/DO_ECHO;state&1-p=1\
                 &resources=2&2=/rw/rapid/execution;ctrlexecstate&2-p=1\
                 &resources=3&3=/rw/rapid/symbol/data/RAPID/T_ROB1/counter;value&3-p=2";
     let r = c.post("/subscription?json=1", form);
@@ -404,10 +389,9 @@ fn subscriptions_deliver_events_over_the_websocket_and_are_cleaned_up() {
                 .map(|v| v.to_str().unwrap()),
             Some("robapi2_subscription")
         );
-        fake.inject(Inject::Signal("DO1".into(), 1.0));
         let mut c2 = Client {
             digest: false,
-            ..Client::new(srv.local_addr(), "", "")
+            ..Client::new(srv.addr, "", "")
         };
         c2.cookies = c.cookies.clone();
         tokio::task::spawn_blocking(move || {
@@ -424,14 +408,29 @@ fn subscriptions_deliver_events_over_the_websocket_and_are_cleaned_up() {
                 .status,
                 204
             );
+            // The program copies DI1 to DO_ECHO: a signal set by RAPID.
+            assert_eq!(
+                c2.post(
+                    "/rw/iosystem/signals/Local/DRV_1/DI1?action=set",
+                    "lvalue=1"
+                )
+                .status,
+                204
+            );
         })
         .await
         .unwrap();
         let mut got = Vec::new();
-        while got.len() < 3 {
+        let all_there = |got: &[String]| {
+            let all = got.join("\n");
+            all.contains("<span class=\"lvalue\">1</span>")
+                && all.contains("<span class=\"ctrlexecstate\">running</span>")
+                && all.contains("<span class=\"value\">3</span>")
+        };
+        while !all_there(&got) {
             let m = tokio::time::timeout(Duration::from_secs(5), ws.next())
                 .await
-                .unwrap()
+                .unwrap_or_else(|_| panic!("no more events; got {got:?}"))
                 .unwrap()
                 .unwrap();
             got.push(m.into_text().unwrap().to_string());
@@ -478,4 +477,281 @@ fn subscriptions_deliver_events_over_the_websocket_and_are_cleaned_up() {
         "swept"
     );
     assert!(t0.elapsed() < Duration::from_secs(5));
+}
+
+#[test]
+fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
+    let srv = start("program");
+    let mut c = login(&srv);
+    let cycles = |c: &mut Client| -> f64 {
+        let v = c
+            .get("/rw/rapid/symbol/data/RAPID/T_ROB1/MainModule/cycles?json=1")
+            .json();
+        v["_embedded"]["_state"][0]["value"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let wait_for = |c: &mut Client, what: &str, ok: &dyn Fn(&mut Client) -> bool| {
+        let t0 = Instant::now();
+        while !ok(c) {
+            assert!(t0.elapsed() < Duration::from_secs(10), "{what}");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    };
+    assert_eq!(cycles(&mut c), 0.0, "nothing runs before a start");
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=forever")
+            .status,
+        204
+    );
+    wait_for(&mut c, "the program runs", &|c| cycles(c) >= 3.0);
+    // PERS written over RWS is what RAPID reads next.
+    assert_eq!(
+        c.post(
+            "/rw/rapid/symbol/data/RAPID/T_ROB1/cycles?action=set",
+            "value=1000"
+        )
+        .status,
+        204
+    );
+    wait_for(&mut c, "RAPID counts on from 1000", &|c| cycles(c) > 1000.0);
+    // A signal set over RWS is read by RAPID, which sets another one.
+    assert_eq!(
+        c.post(
+            "/rw/iosystem/signals/Local/DRV_1/DI1?action=set",
+            "lvalue=1"
+        )
+        .status,
+        204
+    );
+    wait_for(&mut c, "DO_ECHO follows DI1", &|c| {
+        c.get("/rw/iosystem/signals/Local/DRV_1/DO_ECHO?json=1")
+            .json()["_embedded"]["_state"][0]["lvalue"]
+            == "1"
+    });
+    // The program pointer cannot be reset while running; stop, and nothing runs.
+    assert!(
+        c.post("/rw/rapid/execution?action=resetpp", "").status >= 400,
+        "resetpp while running"
+    );
+    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    std::thread::sleep(Duration::from_millis(200));
+    let stopped_at = cycles(&mut c);
+    std::thread::sleep(Duration::from_millis(400));
+    assert_eq!(cycles(&mut c), stopped_at, "a stopped program does not run");
+    // Start continues from the program pointer (the cycle mode kept as it was).
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=asis")
+            .status,
+        204
+    );
+    let v = c.get("/rw/rapid/execution?json=1").json();
+    assert_eq!(v["_embedded"]["_state"][0]["cycle"], "forever");
+    wait_for(&mut c, "the program goes on", &|c| cycles(c) > stopped_at);
+    // The operating mode is what RAPID's OpMode() reads; changing it stops the program.
+    assert_eq!(
+        c.post("/rw/panel/opmode?action=setopmode", "opmode=man")
+            .status,
+        204
+    );
+    let v = c.get("/rw/rapid/execution?json=1").json();
+    assert_eq!(v["_embedded"]["_state"][0]["ctrlexecstate"], "stopped");
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=asis")
+            .status,
+        204
+    );
+    wait_for(&mut c, "RAPID sees OP_MAN_PROG", &|c| {
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/opmode_seen?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            == "2"
+    });
+    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    assert_eq!(c.post("/rw/rapid/execution?action=resetpp", "").status, 204);
+    // Motors off: start is refused.
+    assert_eq!(
+        c.post(
+            "/rw/panel/ctrlstate?action=setctrlstate",
+            "ctrl-state=motoroff"
+        )
+        .status,
+        204
+    );
+    assert!(
+        c.post("/rw/rapid/execution?action=start", "cycle=once")
+            .status
+            >= 400
+    );
+    // The event log holds what happened, numbered.
+    let log = c.get("/rw/elog/0?json=1").json();
+    let codes: Vec<String> = log["_embedded"]["_state"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["code"].as_str().unwrap().to_string())
+        .collect();
+    for want in ["10150", "10151", "10002", "10010"] {
+        assert!(codes.iter().any(|c| c == want), "{want} in {codes:?}");
+    }
+    // Ctrl-C: a clean shutdown.
+    let ended = srv.stop(Duration::from_secs(20));
+    assert_eq!(ended.code, Some(0), "{ended:?}");
+    assert!(ended.stderr.contains("rapidvc serve: stopped"), "{ended:?}");
+}
+
+#[test]
+fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "moves",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    let j1 = |c: &mut Client| -> f64 {
+        let v = c
+            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
+            .json();
+        v["_embedded"]["_state"][0]["rax_1"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let reached = |c: &mut Client| {
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            == "TRUE"
+    };
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=once")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    while j1(&mut c) < 3.0 {
+        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    std::thread::sleep(Duration::from_millis(500));
+    let held = j1(&mut c);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(j1(&mut c), held, "the robot stands while stopped");
+    assert!(held > 3.0 && held < 29.0, "stopped on the way: {held}");
+    assert!(!reached(&mut c), "the program waits in its move");
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=asis")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    while !reached(&mut c) {
+        assert!(t0.elapsed() < Duration::from_secs(15), "the move ends");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert!((j1(&mut c) - 30.0).abs() < 0.01, "at the target");
+    // A single cycle ended: execution stopped.
+    let t0 = Instant::now();
+    while c.get("/rw/rapid/execution?json=1").json()["_embedded"]["_state"][0]["ctrlexecstate"]
+        != "stopped"
+    {
+        assert!(t0.elapsed() < Duration::from_secs(5), "stopped after once");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn the_speed_ratio_scales_the_moves_planned_after_it() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "speedratio",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    let timed_run = |c: &mut Client| -> f64 {
+        assert_eq!(
+            c.post("/rw/rapid/execution?action=start", "cycle=once")
+                .status,
+            204
+        );
+        let t0 = Instant::now();
+        loop {
+            let v = c
+                .get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
+                .json();
+            let e = c.get("/rw/rapid/execution?json=1").json();
+            if v["_embedded"]["_state"][0]["value"] == "TRUE"
+                && e["_embedded"]["_state"][0]["ctrlexecstate"] == "stopped"
+            {
+                break;
+            }
+            assert!(t0.elapsed() < Duration::from_secs(30), "the run ends");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/move_time?json=1")
+            .json()["_embedded"]["_state"][0]["value"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let full = timed_run(&mut c);
+    assert_eq!(
+        c.post(
+            "/rw/panel/speedratio?action=setspeedratio",
+            "speed-ratio=50"
+        )
+        .status,
+        204
+    );
+    let half = timed_run(&mut c);
+    // Robot time measured by the program in one run: the ratio, not wall-clock figures.
+    let ratio = half / full;
+    assert!((1.6..2.4).contains(&ratio), "{half} s / {full} s = {ratio}");
+}
+
+#[test]
+fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "sigint",
+        "tests/serve",
+        &["--entry", "moves"],
+    );
+    let mut c = login(&srv);
+    assert_eq!(
+        c.post("/rw/rapid/execution?action=start", "cycle=once")
+            .status,
+        204
+    );
+    let t0 = Instant::now();
+    loop {
+        let v = c
+            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
+            .json();
+        let j1: f64 = v["_embedded"]["_state"][0]["rax_1"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap();
+        if j1 > 3.0 {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let ended = srv.stop(Duration::from_secs(20));
+    assert_eq!(ended.code, Some(0), "{ended:?}");
+    assert!(!ended.timed_out, "{ended:?}");
+    // The summary of the real-time run, with the motion thread's period error.
+    assert!(ended.stderr.contains("period error"), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("rapidvc serve: stopped"),
+        "{}",
+        ended.stderr
+    );
 }

@@ -1,23 +1,19 @@
-//! Robot Web Services driven by abb_robot_client's `RWS` class (PyPI, unchanged): every call
-//! it makes, a subscription receiving signal, execution, persistent and event-log events over
-//! the WebSocket, and the XHTML resources abb_librws reads, parsed with a DOM parser
-//! (`tests/clients/rws_client.py`).
+//! Robot Web Services of a real `rapidvc serve` driven by abb_robot_client's `RWS` class
+//! (PyPI, unchanged): every call it makes, a subscription receiving signal, execution,
+//! persistent and event-log events over the WebSocket, and the XHTML resources abb_librws
+//! reads, parsed with a DOM parser (`tests/clients/rws_client.py`).
 //!
-//! The controller is the stand-in of `tests/support/fake_controller.rs` until `rapidvc serve`
-//! serves the service contract; then this test moves to `rapidvc serve`. Needs
-//! `RAPIDVC_PYTHON` when the tests are built (see `build.rs`); ends by itself (the script's
-//! own waits are bounded, and the child is killed after a time-out).
+//! Needs `RAPIDVC_PYTHON` when the tests are built (see `build.rs`); ends by itself (the
+//! script's own waits are bounded, and the children are killed after a time-out).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use rapidvc_testkit::fake_controller;
 use rapidvc_testkit::procs;
+use rapidvc_testkit::serve::Serve;
 
 use std::process::Command;
 use std::time::Duration;
 
-use fake_controller::FakeController;
 use procs::{Proc, python, root};
-use rapidvc::services::rws::{RwsOptions, RwsServer, router};
 
 #[test]
 #[cfg_attr(
@@ -25,13 +21,43 @@ use rapidvc::services::rws::{RwsOptions, RwsServer, router};
     ignore = "needs RAPIDVC_PYTHON (a Python with abb_robot_client) when the tests are built"
 )]
 fn abb_robot_client_drives_every_resource_it_uses() {
-    let fake = FakeController::start("pyclient");
-    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    let srv = RwsServer::start(listener, router(fake.handle(), RwsOptions::default()), 64).unwrap();
+    let srv = Serve::start(rapidvc_testkit::rapidvc!(), "pyclient", "tests/serve", &[]);
     let mut cmd = Command::new(python());
     cmd.arg(root().join("tests/clients/rws_client.py"))
         .arg(srv.url());
     let ended = Proc::spawn(cmd).wait(Duration::from_secs(90));
+    assert!(
+        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
+        "stdout:\n{}\nstderr:\n{}",
+        ended.stdout,
+        ended.stderr
+    );
+}
+
+#[test]
+#[cfg_attr(
+    not(rapidvc_python),
+    ignore = "needs RAPIDVC_PYTHON (a Python with abb_robot_client) when the tests are built"
+)]
+fn abb_robot_client_rws_and_egm_run_joint_pose_and_path_correction_sessions() {
+    // A free UDP port for the client's EGM socket (taken again by the client at once).
+    let port = std::net::UdpSocket::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let device = format!("--device=sensor=127.0.0.1:{port}");
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "pyegm",
+        "tests/serve_egm",
+        &[device.as_str()],
+    );
+    let mut cmd = Command::new(python());
+    cmd.arg(root().join("tests/clients/rws_egm.py"))
+        .arg(srv.url())
+        .arg(port.to_string());
+    let ended = Proc::spawn(cmd).wait(Duration::from_secs(150));
     assert!(
         ended.code == Some(0) && ended.stdout.contains("ALL OK"),
         "stdout:\n{}\nstderr:\n{}",

@@ -365,7 +365,7 @@ pub fn run(args: RunArgs) -> ExitCode {
 /// The controller's system side of this run: the calendar (`--date`), the robot (`--robot`),
 /// the configuration database of the configuration directory (which SaveCfgData may write
 /// into with `--save-cfg`).
-fn system_services(
+pub(super) fn system_services(
     args: &RunArgs,
     config: &crate::config::Config,
     sources: &SourceMap,
@@ -386,24 +386,27 @@ fn system_services(
 }
 
 /// What is checked and read before anything runs.
-struct Prepared {
+pub(super) struct Prepared {
     /// The `--pers` file as it was, when it exists.
-    pers: Option<StoredPers>,
+    pub(super) pers: Option<StoredPers>,
     /// The EGM devices the program sets up.
-    devices: egm_options::DeviceUse,
+    pub(super) devices: egm_options::DeviceUse,
 }
 
 /// A `--pers` file read at the start.
-struct StoredPers {
-    path: PathBuf,
+pub(super) struct StoredPers {
+    pub(super) path: PathBuf,
     /// The whole text (rewritten in place at the end).
-    text: String,
-    entries: Vec<pers::PersEntry>,
+    pub(super) text: String,
+    pub(super) entries: Vec<pers::PersEntry>,
 }
 
 /// Everything a run can refuse before it starts (exit 2, nothing ran): the entry procedure,
 /// the output paths, the `--pers` file, the `--device` names.
-fn before_the_run(args: &RunArgs, prog: &crate::ir::Program) -> Result<Prepared, String> {
+pub(super) fn before_the_run(
+    args: &RunArgs,
+    prog: &crate::ir::Program,
+) -> Result<Prepared, String> {
     if let Err(e) = Interp::entry_point(prog, &args.entry) {
         return Err(format!(
             "--entry {:?}: {}{}",
@@ -566,7 +569,7 @@ fn start_view(
 /// program sets up, `None` when it uses no EGM; `uses_sockets`: the program has sockets, so
 /// real processes take part (real time unless `--lockstep`).
 #[allow(clippy::too_many_arguments)]
-fn start_controller(
+pub(super) fn start_controller(
     args: &RunArgs,
     sources: &Arc<SourceMap>,
     cfg: &crate::config::Config,
@@ -705,13 +708,13 @@ fn plot_title(args: &RunArgs) -> String {
     format!("{} on {}", names.join(", "), args.robot.0.name)
 }
 
-fn print_summary(summary: &RunSummary) {
+pub(super) fn print_summary(summary: &RunSummary) {
     progress_line::clear();
     eprintln!("{summary}");
 }
 
 /// Where program output goes: TP lines to stdout, the event log to stderr.
-fn print_output(o: &Output) {
+pub(super) fn print_output(o: &Output) {
     match o {
         Output::TpWrite(s) => {
             let mut out = std::io::stdout().lock();

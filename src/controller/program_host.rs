@@ -10,6 +10,7 @@
 mod corr_generators;
 mod egm_parts;
 mod motion_events;
+pub mod panel_moves;
 mod path_recovery;
 mod position_events;
 
@@ -77,6 +78,10 @@ pub struct ControllerHost {
     /// Something outside the program takes part in a virtual run (an external sensor in
     /// lockstep), so a wait may end for reasons the program does not control.
     outside_inputs: bool,
+    /// A controller that stays up: the panel's speed ratio and operating mode applied to
+    /// every move, and the moves kept so a stopped program's move can continue
+    /// (`panel_moves.rs`).
+    panel: Option<panel_moves::PanelMoves>,
     /// Signal changes at given times (`--signal-script`).
     script: super::signal_script::SignalScript,
 }
@@ -112,6 +117,7 @@ impl ControllerHost {
             last_move: LastMove::None,
             stop: None,
             outside_inputs: false,
+            panel: None,
             script: Default::default(),
         }
     }
@@ -314,7 +320,17 @@ impl ControllerHost {
         let id = self.last_id;
         set_id(&mut cmd, id);
         let stop_point = zone_of(&cmd).finep;
-        let result = self.ctl()?.submit_triggered(cmd, triggers, name);
+        let kept = self.panel.as_ref().map(|_| cmd.clone());
+        let limits = self.panel.as_ref().map(|p| p.limits.clone());
+        let ctl = self.ctl()?;
+        let result = panel_moves::with_limits(ctl, limits.as_deref(), |c| {
+            c.submit_triggered(cmd, triggers, name)
+        });
+        if result.is_ok()
+            && let (Some(p), Some(c)) = (self.panel.as_mut(), kept)
+        {
+            p.unfinished.push_back((id, c));
+        }
         self.pump_events();
         if result.is_ok() {
             self.last_accepted = id;

@@ -618,10 +618,35 @@ impl ServiceHandle {
     }
 }
 
+/// A sender of events for another thread of the controller than the endpoint's.
+#[derive(Clone, Debug)]
+pub struct EventPublisher {
+    events: broadcast::Sender<Event>,
+}
+
+impl EventPublisher {
+    /// Tell every subscriber (never blocks; nobody listening is fine).
+    pub fn publish(&self, event: Event) {
+        let _ = self.events.send(event);
+    }
+
+    /// True when a service listens.
+    pub fn has_subscribers(&self) -> bool {
+        self.events.receiver_count() > 0
+    }
+}
+
 impl ServiceEndpoint {
     /// The next waiting request, if any (never blocks).
     pub fn try_next(&mut self) -> Option<Request> {
         self.requests.try_recv().ok()
+    }
+
+    /// A publisher for another thread of the controller.
+    pub fn publisher(&self) -> EventPublisher {
+        EventPublisher {
+            events: self.events.clone(),
+        }
     }
 
     /// Tell every subscriber (never blocks; nobody listening is fine).

@@ -596,6 +596,17 @@ impl Interp {
             if self.stop_requested() {
                 return Err(Unwind::Stop);
             }
+            match self.run_service_hook() {
+                super::HookAction::Continue => {}
+                super::HookAction::Stop => return Err(Unwind::Stop),
+                super::HookAction::Abort => {
+                    return Err(self.fatal(
+                        super::ErrorKind::Aborted,
+                        span,
+                        "execution stopped by the service hook",
+                    ));
+                }
+            }
             if let Some(c) = cond.as_mut()
                 && c(self, p)?
             {
@@ -615,6 +626,10 @@ impl Interp {
             if let Some(t) = self.ints.next_timer() {
                 let t = t.max(now);
                 wake = Some(wake.map_or(t, |w| w.min(t)));
+            }
+            if self.service.is_some() {
+                let slice = now.after_secs(super::SERVICE_WAIT_SLICE_S);
+                wake = Some(wake.map_or(slice, |w| w.min(slice)));
             }
             let Some(wake) = wake else {
                 return Err(self.fatal(super::ErrorKind::Host, span, "this wait can never end"));

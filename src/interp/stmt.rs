@@ -458,12 +458,28 @@ impl Interp {
             };
             let action = h(&ev);
             self.hook = Some(h);
-            if action == HookAction::Abort {
+            if action != HookAction::Continue {
                 return Err(self.fatal(
                     ErrorKind::Aborted,
                     span,
                     "execution stopped by the before-statement hook",
                 ));
+            }
+        }
+        if self.service.is_some() {
+            if let Some(f) = self.frames.last_mut() {
+                f.at = span;
+            }
+            match self.run_service_hook() {
+                HookAction::Continue => {}
+                HookAction::Stop => return Err(Unwind::Stop),
+                HookAction::Abort => {
+                    return Err(self.fatal(
+                        ErrorKind::Aborted,
+                        span,
+                        "execution stopped by the service hook",
+                    ));
+                }
             }
         }
         if self.ints.armed() {

@@ -8,7 +8,7 @@
 //! - [`robot`]: robot fixtures (tools of the manual's examples) and joint assertions;
 //! - [`src_files`]: the crate's own sources, for the tests that read the code (layers, catalogue);
 //! - [`gen_program`]: large valid RAPID programs for the parser's tests and benchmarks;
-//! - [`rws_http`], [`fake_controller`]: the RWS tests' HTTP client and stand-in controller.
+//! - [`rws_http`], [`serve`]: the RWS tests' HTTP client and a real `rapidvc serve`.
 //!
 //! The path of the `rapidvc` binary is known only to the test crates (`CARGO_BIN_EXE_rapidvc`
 //! at their compile time): [`rapidvc!`] expands there.
@@ -16,11 +16,11 @@
 pub mod csv;
 pub mod egm_loop;
 pub mod egm_wire;
-pub mod fake_controller;
 pub mod gen_program;
 pub mod procs;
 pub mod robot;
 pub mod rws_http;
+pub mod serve;
 pub mod src_files;
 pub mod summary;
 pub mod view_page;

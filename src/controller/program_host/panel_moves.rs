@@ -1,0 +1,172 @@
+//! A controller that stays up (`rapidvc serve`): the operator panel's limits applied to every
+//! move, and stopping and continuing a program's motion.
+//!
+//! * **Speed ratio** (1–100 %, `rw/panel/speedratio`): scales the programmed speeds of every
+//!   move planned after it was set, on top of `VelSet`, as the FlexPendant's override does.
+//!   A move already planned keeps its speed (rapidvc plans each move completely when it is
+//!   submitted).
+//! * **Manual reduced speed** (MANR): the TCP speed of moves planned in MANR is capped at
+//!   250 mm/s.
+//! * **Stop and continue**: [`ControllerHost::hold_motion`] brakes the robot (all axes
+//!   together, within their accelerations) and keeps the moves that had not ended;
+//!   [`ControllerHost::resume_motion`] plans them again from where the robot stands, so an
+//!   interrupted move continues to its target when the program is started again (its
+//!   position events, `TriggL` and the like, are not fired again).
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+
+use super::ControllerHost;
+use crate::controller::ControllerHandle;
+use crate::interp::HostError;
+use crate::robot::command::MotionCommand;
+
+/// TCP speed cap in manual reduced speed mode (mm/s).
+pub const MANUAL_REDUCED_TCP_SPEED: f64 = 250.0;
+
+/// The panel's settings as the program side reads them (shared with the services' side).
+#[derive(Debug)]
+pub struct PanelLimits {
+    /// Speed ratio in percent (1–100).
+    pub speed_ratio: AtomicU8,
+    /// Manual reduced speed mode.
+    pub manual_reduced: AtomicBool,
+}
+
+impl Default for PanelLimits {
+    fn default() -> Self {
+        PanelLimits {
+            speed_ratio: AtomicU8::new(100),
+            manual_reduced: AtomicBool::new(false),
+        }
+    }
+}
+
+/// What the host keeps for a controller that stays up.
+#[derive(Debug)]
+pub(super) struct PanelMoves {
+    pub(super) limits: Arc<PanelLimits>,
+    /// Moves accepted and not yet known to have ended, oldest first, with their ids.
+    pub(super) unfinished: VecDeque<(u64, MotionCommand)>,
+    /// The robot was braked by [`ControllerHost::hold_motion`] with these moves unfinished.
+    held: bool,
+}
+
+/// Run `submit` with the panel's speed ratio and MANR cap (when `limits` are given) applied
+/// to the modal settings for this one move.
+pub(super) fn with_limits<T>(
+    ctl: &mut ControllerHandle,
+    limits: Option<&PanelLimits>,
+    submit: impl FnOnce(&mut ControllerHandle) -> T,
+) -> T {
+    let Some(limits) = limits else {
+        return submit(ctl);
+    };
+    let saved = ctl.settings();
+    let mut s = saved;
+    let ratio = f64::from(limits.speed_ratio.load(Ordering::Relaxed).clamp(1, 100));
+    s.velset.override_pct = crate::motion::limits::override_factor(&saved) * ratio;
+    if limits.manual_reduced.load(Ordering::Relaxed) {
+        s.velset.max_tcp = s.velset.max_tcp.min(MANUAL_REDUCED_TCP_SPEED);
+    }
+    ctl.set_settings(s);
+    let result = submit(ctl);
+    ctl.set_settings(saved);
+    result
+}
+
+impl ControllerHost {
+    /// Apply the panel's `limits` to every move from now on and keep moves so a stopped
+    /// program's motion can continue ([`Self::hold_motion`], [`Self::resume_motion`]).
+    pub fn with_panel(mut self, limits: Arc<PanelLimits>) -> Self {
+        self.panel = Some(PanelMoves {
+            limits,
+            unfinished: VecDeque::new(),
+            held: false,
+        });
+        self
+    }
+
+    /// Forget the moves that have ended.
+    fn prune_unfinished(&mut self) {
+        let Some(st) = self.ctl.as_mut().map(ControllerHandle::state) else {
+            return;
+        };
+        let void = self.void_up_to;
+        if let Some(p) = self.panel.as_mut() {
+            p.unfinished.retain(|(id, _)| *id > void && !st.done(*id));
+        }
+    }
+
+    /// The program stops: brake the robot and keep the moves that had not ended. Returns
+    /// how many moves are kept.
+    pub fn hold_motion(&mut self) -> usize {
+        self.prune_unfinished();
+        let moving = self
+            .ctl
+            .as_mut()
+            .map(|c| {
+                let st = c.state();
+                st.moving || st.pending > 0
+            })
+            .unwrap_or(false);
+        if let Some(ctl) = self.ctl.as_mut()
+            && moving
+        {
+            ctl.stop_motion();
+        }
+        self.pump_events();
+        match self.panel.as_mut() {
+            Some(p) => {
+                p.held = moving && !p.unfinished.is_empty();
+                if p.held { p.unfinished.len() } else { 0 }
+            }
+            None => 0,
+        }
+    }
+
+    /// The program starts again: plan the kept moves again from where the robot stands.
+    pub fn resume_motion(&mut self) -> Result<(), HostError> {
+        let Some(p) = self.panel.as_mut() else {
+            return Ok(());
+        };
+        if !p.held {
+            return Ok(());
+        }
+        p.held = false;
+        let moves: Vec<(u64, MotionCommand)> = p.unfinished.drain(..).collect();
+        let limits = p.limits.clone();
+        for (id, cmd) in moves {
+            let ctl = self.ctl()?;
+            match with_limits(ctl, Some(&limits), |c| c.submit(cmd.clone())) {
+                Ok(()) => {
+                    if let Some(p) = self.panel.as_mut() {
+                        p.unfinished.push_back((id, cmd));
+                    }
+                }
+                Err(e) => {
+                    // The move cannot continue from here: the program's wait for it is over
+                    // and the event says why.
+                    self.void_up_to = self.void_up_to.max(id);
+                    self.pump_events();
+                    return Err(HostError::fatal(format!(
+                        "the stopped move cannot continue: {e}"
+                    )));
+                }
+            }
+        }
+        self.pump_events();
+        Ok(())
+    }
+
+    /// After a program-pointer reset: the kept moves are dropped (the robot stays where it
+    /// stopped) and the program's waits for them are over.
+    pub fn forget_motion(&mut self) {
+        if let Some(p) = self.panel.as_mut() {
+            p.held = false;
+            p.unfinished.clear();
+        }
+        self.void_up_to = self.last_id;
+    }
+}
