@@ -16,6 +16,7 @@ pub mod frames;
 pub mod kinematics;
 pub mod model;
 pub mod singularity;
+pub mod trigger;
 pub mod units;
 
 pub use conf::ConfData;

@@ -16,6 +16,7 @@ use std::time::Duration;
 use super::files::{self, Role};
 use super::robots::RobotArg;
 use super::{answers, interrupt, num, progress_line, render};
+use crate::controller::signal_script::SignalScript;
 use crate::program;
 
 pub mod egm_options;
@@ -76,6 +77,10 @@ pub struct RunArgs {
     /// (default: the terminal when stdin is one, else nobody answers).
     #[arg(long, value_name = "FILE")]
     pub answers: Option<PathBuf>,
+    /// Signal changes at given robot times, one per line: `TIME SIGNAL VALUE` (seconds, a
+    /// configured signal, its new value; `#` starts a comment line).
+    #[arg(long, value_name = "FILE")]
+    pub signal_script: Option<PathBuf>,
     /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub cycles: u32,
@@ -104,6 +109,19 @@ pub struct RunArgs {
     /// 3D view: replay page, live view.
     #[command(flatten)]
     pub view: view_options::ViewArgs,
+}
+
+/// `--signal-script FILE`, read and checked against the run's signals.
+fn read_signal_script(
+    path: Option<&std::path::Path>,
+    signals: &crate::signals::SignalTable,
+) -> Result<SignalScript, String> {
+    let Some(path) = path else {
+        return Ok(SignalScript::default());
+    };
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read the signal script {}: {e}", path.display()))?;
+    SignalScript::parse(&text, signals).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The durations the numeric options give a run (the value parsers bound the options, so
@@ -193,6 +211,13 @@ pub fn run(args: RunArgs) -> ExitCode {
     let system = system_services(&args, &loaded);
     let registry = loaded.registry;
     let signals = loaded.signals;
+    let script = match read_signal_script(args.signal_script.as_deref(), &signals) {
+        Ok(s) => s,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
     let uses_sockets = socket_clock::uses_sockets(&prog);
@@ -226,6 +251,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         .with_system(system)
         .with_max_time(args.max_time)
         .with_outside_inputs(outside_inputs)
+        .with_signal_script(script)
         .with_stop_request(Arc::clone(&interrupted))
         .with_lines(Arc::clone(&sources))
         .with_sink(move |o| {

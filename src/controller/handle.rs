@@ -21,11 +21,13 @@ use super::condition::Condition;
 use super::cycle_hook::CycleHook;
 use super::monotonic_clock::MonotonicClock;
 use super::motion_thread::Control;
+use super::position_events::PositionEvents;
 use super::realtime_driver::RealTimeDriver;
 use super::summary::RunSummary;
 use super::tick_sink::TickSink;
 use super::virtual_driver::VirtualDriver;
 use super::{ClockMode, ControllerConfig, ControllerError};
+use crate::robot::trigger::PathTrigger;
 
 enum Driver {
     Virtual(Box<VirtualDriver>),
@@ -42,6 +44,8 @@ pub struct ControllerHandle {
     period: Duration,
     /// Set from outside (Ctrl-C): a submit blocked on a full queue gives up.
     interrupt: Option<Arc<AtomicBool>>,
+    /// What the position events of the queued moves do.
+    position: PositionEvents,
 }
 
 impl std::fmt::Debug for ControllerHandle {
@@ -109,6 +113,7 @@ impl ControllerHandle {
             max_wait: config.max_wait,
             period: core_config.period,
             interrupt: None,
+            position: PositionEvents::default(),
         })
     }
 
@@ -153,7 +158,10 @@ impl ControllerHandle {
             Driver::Virtual(v) => v.core.state(),
             Driver::RealTime(r) => {
                 let st = r.published().state;
+                let from = self.events.len();
                 Self::drain_rt_events(r, &mut self.events);
+                self.position
+                    .route(&mut self.events, from, st.setpoint.speed);
                 st
             }
         }
@@ -162,7 +170,10 @@ impl ControllerHandle {
     /// Take every event recorded since the last call (planning errors and warnings, faults).
     pub fn take_events(&mut self) -> Vec<MotionEvent> {
         if let Driver::RealTime(r) = &mut self.driver {
+            let from = self.events.len();
             Self::drain_rt_events(r, &mut self.events);
+            let speed = r.published().state.setpoint.speed;
+            self.position.route(&mut self.events, from, speed);
         }
         std::mem::take(&mut self.events)
     }
@@ -193,6 +204,28 @@ impl ControllerHandle {
     /// until there is room). A move that cannot be executed is refused here, before the robot
     /// moves, with its ABB event ([`MotionError::event`]).
     pub fn submit(&mut self, cmd: MotionCommand) -> Result<(), ControllerError> {
+        self.submit_triggered(cmd, &[], None)
+    }
+
+    /// What the position events of queued moves do (register an action for its key).
+    pub fn position_events(&mut self) -> &mut PositionEvents {
+        &mut self.position
+    }
+
+    /// What the position events of queued moves do, read-only.
+    pub fn position_events_ref(&self) -> &PositionEvents {
+        &self.position
+    }
+
+    /// As [`Self::submit`], with position events on the move (keys of actions registered
+    /// in [`Self::position_events`]) and the name of the RAPID instruction when it is not
+    /// the command's own.
+    pub fn submit_triggered(
+        &mut self,
+        cmd: MotionCommand,
+        triggers: &[PathTrigger],
+        name: Option<&'static str>,
+    ) -> Result<(), ControllerError> {
         let interrupt = self.interrupt.clone();
         match &mut self.driver {
             Driver::Virtual(v) => {
@@ -204,7 +237,10 @@ impl ControllerHandle {
                     {
                         return Err(ControllerError::Interrupted);
                     }
-                    match v.core.enqueue(cmd) {
+                    v.core.set_triggers(triggers, name);
+                    let queued = v.core.enqueue(cmd);
+                    v.core.set_triggers(&[], None);
+                    match queued {
                         Ok(()) => {
                             while let Some(e) = v.core.take_event() {
                                 self.events.push(e);
@@ -213,7 +249,9 @@ impl ControllerHandle {
                         }
                         Err(EnqueueError::QueueFull(c)) => {
                             cmd = *c;
-                            v.tick(&mut self.events);
+                            let from = self.events.len();
+                            let sp = v.tick(&mut self.events);
+                            self.position.route(&mut self.events, from, sp.speed);
                         }
                         Err(EnqueueError::Rejected(e)) => {
                             while let Some(ev) = v.core.take_event() {
@@ -256,6 +294,7 @@ impl ControllerHandle {
                 if idle && published.state.setpoint.joints != r.planner.start() {
                     r.planner.set_start(published.state.setpoint.joints);
                 }
+                r.planner.set_triggers(triggers, name);
                 let planned = match r.planner.plan(&cmd) {
                     Ok(p) => p,
                     Err(e) => return refuse(&mut self.events, e),
@@ -343,17 +382,22 @@ impl ControllerHandle {
                     if st.setpoint.time >= limit {
                         return Err(ControllerError::Timeout(max_wait));
                     }
-                    v.tick(&mut self.events);
+                    let from = self.events.len();
+                    let sp = v.tick(&mut self.events);
+                    self.position.route(&mut self.events, from, sp.speed);
                 }
             }
             Driver::RealTime(r) => {
                 let wall_limit = self.wall.elapsed().saturating_add(max_wait);
                 let mut guard = r.published();
                 loop {
+                    let from = self.events.len();
                     while let Ok(e) = r.events.try_recv() {
                         self.events.push(e);
                     }
                     let p = *guard;
+                    self.position
+                        .route(&mut self.events, from, p.state.setpoint.speed);
                     if p.state.halted {
                         return Err(stopped(&self.events));
                     }
@@ -397,15 +441,22 @@ impl ControllerHandle {
                     if !v.core.state().moving {
                         break;
                     }
-                    v.tick(&mut self.events);
+                    let from = self.events.len();
+                    let sp = v.tick(&mut self.events);
+                    self.position.route(&mut self.events, from, sp.speed);
                 }
                 v.core.plan_from_here();
+                self.position.drop_pending();
             }
             Driver::RealTime(r) => {
                 let _ = r.control.send(Control::Stop);
                 let _ = Self::settle(r, |p| !p.state.moving && p.state.pending == 0);
                 let joints = r.published().state.setpoint.joints;
                 r.planner.set_start(joints);
+                let from = self.events.len();
+                Self::drain_rt_events(r, &mut self.events);
+                self.position.route(&mut self.events, from, 0.0);
+                self.position.drop_pending();
             }
         }
     }

@@ -9,6 +9,7 @@
 
 mod egm_parts;
 mod motion_events;
+mod position_events;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -18,6 +19,7 @@ use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAr
 use crate::interp::{Host, HostError, VirtualHost};
 use crate::motion::{MotionEvent, MotionState, SingArea};
 use crate::robot::command::{EXTAX_NONE, MotionCommand, RobTarget};
+use crate::robot::trigger::PathTrigger;
 use crate::robot::{
     JointsDeg, Pose, ToolData, WobjData, flange_target, pose_to_pos_quat, target_from_flange,
 };
@@ -66,6 +68,8 @@ pub struct ControllerHost {
     /// Something outside the program takes part in a virtual run (an external sensor in
     /// lockstep), so a wait may end for reasons the program does not control.
     outside_inputs: bool,
+    /// Signal changes at given times (`--signal-script`).
+    script: super::signal_script::SignalScript,
 }
 
 impl std::fmt::Debug for ControllerHost {
@@ -97,6 +101,7 @@ impl ControllerHost {
             last_move: LastMove::None,
             stop: None,
             outside_inputs: false,
+            script: Default::default(),
         }
     }
 
@@ -284,6 +289,47 @@ impl ControllerHost {
         Ok(st)
     }
 
+    /// Queue a move with position events (keys registered with the controller) as the
+    /// RAPID instruction `name`; see [`Host::motion_submit`].
+    fn submit_with(
+        &mut self,
+        mut cmd: MotionCommand,
+        triggers: &[PathTrigger],
+        name: Option<&'static str>,
+    ) -> Result<u64, HostError> {
+        self.state_checked()?;
+        self.last_id += 1;
+        let id = self.last_id;
+        set_id(&mut cmd, id);
+        let stop_point = zone_of(&cmd).finep;
+        let result = self.ctl()?.submit_triggered(cmd, triggers, name);
+        self.pump_events();
+        if result.is_ok() {
+            self.last_accepted = id;
+        }
+        match result {
+            Ok(()) => {
+                self.submitted += 1;
+                self.last_move = if stop_point {
+                    LastMove::StopPoint
+                } else {
+                    LastMove::FlyBy
+                };
+                Ok(id)
+            }
+            Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
+                Err(self.take_halt(None))
+            }
+            Err(ControllerError::Rejected(e)) => {
+                // The refusal is this instruction's error; its event is not printed.
+                self.errors.retain(|ev| ev.error != e);
+                Err(motion_error(&e, None, self.lines.as_deref()))
+            }
+            Err(e @ ControllerError::Stopped(_)) => Err(self.take_halt(Some(e))),
+            Err(e) => Err(HostError::fatal(e.to_string())),
+        }
+    }
+
     /// True when every move handed to the controller is complete (or was dropped).
     fn all_done(&self, st: &MotionState) -> bool {
         self.last_accepted <= self.void_up_to || st.done(self.last_accepted)
@@ -310,6 +356,12 @@ impl Host for ControllerHost {
     /// Runs the robot until `deadline`, or until the motion state changes (a move ends or
     /// starts, the robot stops), whichever comes first.
     fn wait_until(&mut self, deadline: RobotTime) -> Result<RobotTime, HostError> {
+        // A scripted signal change ends the wait at its time.
+        self.apply_script()?;
+        let deadline = self
+            .script
+            .next_time()
+            .map_or(deadline, |t| t.min(deadline));
         let (target, limit) = match self.max_time {
             Some(max) if deadline > RobotTime::from_secs_f64(max) => {
                 (RobotTime::from_secs_f64(max), Some(max))
@@ -363,6 +415,7 @@ impl Host for ControllerHost {
                 if reached(&st) && !lead.is_zero() {
                     self.program_time = self.program_time.max(target);
                 }
+                self.apply_script()?;
                 Ok(self.now())
             }
             // The robot stopped on a motion error; its event may have been taken already
@@ -380,6 +433,7 @@ impl Host for ControllerHost {
     }
 
     fn read_signal(&mut self, name: &str) -> Result<f64, HostError> {
+        self.apply_script()?;
         self.io.read_signal(name)
     }
 
@@ -391,38 +445,8 @@ impl Host for ControllerHost {
         self.io.signal_kind(name)
     }
 
-    fn motion_submit(&mut self, mut cmd: MotionCommand) -> Result<u64, HostError> {
-        self.state_checked()?;
-        self.last_id += 1;
-        let id = self.last_id;
-        set_id(&mut cmd, id);
-        let stop_point = zone_of(&cmd).finep;
-        let result = self.ctl()?.submit(cmd);
-        self.pump_events();
-        if result.is_ok() {
-            self.last_accepted = id;
-        }
-        match result {
-            Ok(()) => {
-                self.submitted += 1;
-                self.last_move = if stop_point {
-                    LastMove::StopPoint
-                } else {
-                    LastMove::FlyBy
-                };
-                Ok(id)
-            }
-            Err(ControllerError::Rejected(crate::motion::MotionError::Halted)) => {
-                Err(self.take_halt(None))
-            }
-            Err(ControllerError::Rejected(e)) => {
-                // The refusal is this instruction's error; its event is not printed.
-                self.errors.retain(|ev| ev.error != e);
-                Err(motion_error(&e, None, self.lines.as_deref()))
-            }
-            Err(e @ ControllerError::Stopped(_)) => Err(self.take_halt(Some(e))),
-            Err(e) => Err(HostError::fatal(e.to_string())),
-        }
+    fn motion_submit(&mut self, cmd: MotionCommand) -> Result<u64, HostError> {
+        self.submit_with(cmd, &[], None)
     }
 
     fn motion_reached(&mut self, wait: MotionWait) -> Result<bool, HostError> {
@@ -527,6 +551,10 @@ impl Host for ControllerHost {
 
     fn egm_path(&mut self) -> Option<&mut dyn crate::interp::host::EgmPathHost> {
         if self.egm.is_some() { Some(self) } else { None }
+    }
+
+    fn position_events(&mut self) -> Option<&mut dyn crate::interp::host::PositionEventHost> {
+        if self.ctl.is_some() { Some(self) } else { None }
     }
 }
 

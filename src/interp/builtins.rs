@@ -16,6 +16,7 @@ mod io_events;
 mod math;
 mod modules;
 mod motion;
+mod motion_events;
 mod pose;
 mod rawbytes;
 mod sockets;
@@ -96,6 +97,7 @@ impl Registry {
         data_by_name::register(&mut r);
         io_events::register(&mut r);
         motion::register(&mut r);
+        motion_events::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
         files::register(&mut r);

@@ -53,8 +53,10 @@ use crate::time::RobotTime;
 
 mod egm_host;
 mod egm_path_host;
+mod position_events;
 pub use egm_host::{EgmHost, EgmRun};
 pub use egm_path_host::EgmPathHost;
+pub use position_events::{PositionEventHost, ProgramAction, SearchStop, TriggAction, TriggEvent};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -300,6 +302,12 @@ pub trait Host {
     /// text tables (`crate::system`), when this host has one (the instructions and functions
     /// that need it fail with "… is not supported by this controller" otherwise).
     fn system(&mut self) -> Option<&mut crate::system::Services> {
+        None
+    }
+
+    /// The position-event capability (`TriggL`, `MoveLDO`, `SearchL`, …), when this
+    /// controller has one.
+    fn position_events(&mut self) -> Option<&mut dyn PositionEventHost> {
         None
     }
 }

@@ -114,6 +114,11 @@ pub(crate) struct Interrupts {
     in_trap: bool,
     /// Signal writes due later (`\SDelay`, the end of a `PulseDO`): (time, signal, value).
     delayed: Vec<(RobotTime, String, f64)>,
+    /// Moves with position events for the program (`TriggInt`, `MoveLSync`) are queued:
+    /// ask the host for fired ones at every check.
+    pub position: bool,
+    /// `MoveLSync` procedures whose position event fired, to run at the next check.
+    sync_calls: VecDeque<String>,
 }
 
 impl Interrupts {
@@ -129,6 +134,8 @@ impl Interrupts {
             || !self.pers_watches.is_empty()
             || !self.pending.is_empty()
             || !self.delayed.is_empty()
+            || self.position
+            || !self.sync_calls.is_empty()
     }
 
     /// Is this interrupt number connected?
@@ -368,6 +375,20 @@ impl Interp {
             }
         }
         let mut fired: Vec<i32> = Vec::new();
+        if self.ints.position {
+            let taken = self
+                .host
+                .position_events()
+                .map(|h| (h.take_program_events(), h.program_events_pending()));
+            let (actions, pending) = taken.unwrap_or_default();
+            self.ints.position = pending;
+            for a in actions {
+                match a {
+                    super::host::ProgramAction::Interrupt(no) => fired.push(no),
+                    super::host::ProgramAction::Call(name) => self.ints.sync_calls.push_back(name),
+                }
+            }
+        }
         self.ints.timers.retain_mut(|t| {
             if t.next <= now {
                 fired.push(t.intno);
@@ -457,6 +478,11 @@ impl Interp {
                 )));
             }
         }
+        if !self.ints.in_trap {
+            while let Some(name) = self.ints.sync_calls.pop_front() {
+                self.run_sync_call(p, &name, span)?;
+            }
+        }
         if !self.ints.in_trap && !self.ints.disabled {
             while let Some(no) = self.ints.pending.pop_front() {
                 if let Some(&trap) = self.ints.connected.get(&no) {
@@ -466,6 +492,29 @@ impl Interp {
         }
         self.update_poll();
         Ok(())
+    }
+
+    /// Run the procedure of a `MoveLSync` whose position event fired, as a trap routine runs
+    /// (the program's execution level is kept).
+    fn run_sync_call(&mut self, p: &Program, name: &str, span: Span) -> Exec<()> {
+        let Some(rid) = p.find_proc(name).filter(|&r| {
+            let r = p.routine(r);
+            r.kind == crate::ir::RoutineKind::Proc && r.params.is_empty()
+        }) else {
+            return Err(self.error(
+                errnum::ERR_REFUNKPRC,
+                span,
+                format!("there is no procedure `{name}` without parameters to call at the position event"),
+            ));
+        };
+        self.ints.in_trap = true;
+        let res = self.call_routine(p, rid, &[], span);
+        self.ints.in_trap = false;
+        match res {
+            Ok(_) => Ok(()),
+            Err(Unwind::Error(e) | Unwind::Propagate(e)) => Err(Unwind::Fatal(e)),
+            Err(other) => Err(other),
+        }
     }
 
     fn run_trap(&mut self, p: &Program, trap: RoutineId, no: i32, span: Span) -> Exec<()> {

@@ -98,6 +98,7 @@ errs! {
     ERR_OUTSIDE_REACH = 1402, "Position outside reach";
     ERR_WHLSEARCH = 1403, "No search hit";
     ERR_PATH_STOP = 1404, "Path stopped";
+    ERR_SIGSUPSEARCH = 1405, "Search signal already set at the start";
     ERR_NO_ALIASIO_DEF = 1501, "Signal variable is not connected to a signal";
     ERR_ALIASIO_DEF = 1502, "Signal is not defined";
     ERR_ALIASIO_TYPE = 1503, "Signal has the wrong type";

@@ -4,6 +4,7 @@
 //! motion thread).
 
 use crate::robot::command::MotionCommand;
+use crate::robot::trigger::PathTrigger;
 use crate::robot::{JointsDeg, Robot, ToolData};
 
 use super::correction::PathCorrection;
@@ -99,6 +100,12 @@ impl MotionCore {
             }
             Err(e) => refuse(&mut self.exec, e),
         }
+    }
+
+    /// Position events (and the RAPID instruction's name) for the next move planned (see
+    /// [`Planner::set_triggers`]).
+    pub fn set_triggers(&mut self, triggers: &[PathTrigger], name: Option<&'static str>) {
+        self.planner.set_triggers(triggers, name);
     }
 
     /// One motion cycle at robot time `now`: no allocation, no lock, no I/O, no panic.

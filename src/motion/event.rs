@@ -133,6 +133,13 @@ pub enum MotionError {
         /// The RAPID error a handler can catch (`ERR_UDPUC_COMM`), if any.
         rapid_error: Option<&'static str>,
     },
+    /// Not an error: a position event of a move fired in this cycle (`TriggIO`, `MoveLDO`,
+    /// …); `key` is the one its caller gave ([`crate::robot::trigger::PathTrigger`]).
+    #[error("position event {key}")]
+    Trigger {
+        /// The caller's key.
+        key: u64,
+    },
 }
 
 impl MotionError {
@@ -151,7 +158,7 @@ impl MotionError {
             MotionError::CircleUncertain { .. } => EventKind::CircleUncertain,
             MotionError::CornerPathFailure { .. } => EventKind::CornerPathFailure,
             MotionError::PathCorrection { number, title, .. } => return Some((*number, title)),
-            MotionError::JointSpeed { .. } => return None,
+            MotionError::JointSpeed { .. } | MotionError::Trigger { .. } => return None,
             MotionError::InvalidData { .. }
             | MotionError::NotSupported { .. }
             | MotionError::Halted
@@ -184,6 +191,7 @@ impl MotionError {
                 MotionError::Halted => "Motion stopped",
                 MotionError::ExternalGuidance => "External guidance active",
                 MotionError::NotAtStopPoint => "Not in a stop point",
+                MotionError::Trigger { .. } => "Position event",
                 _ => "Motion error",
             },
         }

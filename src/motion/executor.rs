@@ -29,6 +29,20 @@ use super::settings::CoreConfig;
 use super::state::{CoreMode, MotionState, Setpoint};
 use crate::time::RobotTime;
 
+/// Most position events a corner path carries over from the segment it leaves (more are
+/// fired when the corner starts).
+const CARRY_CAPACITY: usize = 64;
+
+/// Record that the position event `key` of `instr` fired at `now`.
+fn fire(events: &mut EventLog, now: RobotTime, instr: InstrRef, key: u64) {
+    events.push(MotionEvent {
+        time: now,
+        severity: Severity::Info,
+        instr: Some(instr),
+        error: MotionError::Trigger { key },
+    });
+}
+
 /// The segment being played.
 #[derive(Debug)]
 struct Active {
@@ -37,6 +51,8 @@ struct Active {
     in_corner: bool,
     /// Next sample index in the current list.
     idx: usize,
+    /// The first of the segment's position events not yet fired.
+    trig: usize,
 }
 
 /// A stop under way (module docs).
@@ -88,6 +104,9 @@ pub struct Executor {
     /// Joint speeds of the last cycle, deg/s.
     velocity: JointsDeg,
     braking: Option<Braking>,
+    /// Position events of the segment a corner path left, still to fire in the corner:
+    /// (instruction, key, share of the corner path where it fires).
+    carry: Vec<(InstrRef, u64, f64)>,
 }
 
 impl std::fmt::Debug for Executor {
@@ -132,6 +151,7 @@ impl Executor {
             track: None,
             velocity: [0.0; 6],
             braking: None,
+            carry: Vec::with_capacity(CARRY_CAPACITY),
             robot,
         }
     }
@@ -230,6 +250,7 @@ impl Executor {
     /// Drop every queued and active move (kept for recycling) at once, without braking: for
     /// a robot at rest.
     pub fn clear(&mut self) {
+        self.carry.clear();
         if let Some(a) = self.active.take() {
             self.park(a.seg);
         }
@@ -347,7 +368,7 @@ impl Executor {
                 }
             }
         } else {
-            match self.next_sample() {
+            match self.next_sample(now) {
                 Some(out) => {
                     fresh = out.first;
                     let mut instr = self.active_instr().or(self.last_done);
@@ -577,7 +598,7 @@ impl Executor {
 
     /// The next sample of the planned moves, handing over into corner paths and finishing
     /// segments as they end. `None` when there is nothing to play.
-    fn next_sample(&mut self) -> Option<Out> {
+    fn next_sample(&mut self, now: RobotTime) -> Option<Out> {
         // Each pass either returns or makes progress (a segment started, a corner ended, or a
         // segment finished), so this terminates within a few passes.
         for _ in 0..(4 + 2 * self.capacity) {
@@ -589,6 +610,7 @@ impl Executor {
                     seg,
                     in_corner: false,
                     idx: 0,
+                    trig: 0,
                 });
                 continue;
             };
@@ -596,11 +618,35 @@ impl Executor {
                 if let Some(s) = act.seg.corner_samples.get(act.idx) {
                     let first = act.idx == 0;
                     act.idx += 1;
+                    // Position events in the corner path: the left segment's up to its
+                    // ToPoint in the first half, this segment's up to its corner exit in
+                    // the second half.
+                    let share = act.idx as f64 / act.seg.corner_samples.len().max(1) as f64;
+                    let events = &mut self.events;
+                    self.carry.retain(|&(instr, key, at)| {
+                        let due = at <= share;
+                        if due {
+                            fire(events, now, instr, key);
+                        }
+                        !due
+                    });
+                    let resume = act.seg.corner.map_or(0, |c| c.resume_at).max(1);
+                    while let Some(t) = act.seg.triggers.get(act.trig) {
+                        let at = 0.5 + 0.5 * (t.at + 1) as f64 / resume as f64;
+                        if t.at >= resume || at > share {
+                            break;
+                        }
+                        fire(&mut self.events, now, act.seg.instr, t.key);
+                        act.trig += 1;
+                    }
                     return Some(Out {
                         sample: *s,
                         at_stop_point: false,
                         first,
                     });
+                }
+                for (instr, key, _) in self.carry.drain(..) {
+                    fire(&mut self.events, now, instr, key);
                 }
                 act.in_corner = false;
                 act.idx = act.seg.corner.map_or(0, |c| c.resume_at);
@@ -612,11 +658,25 @@ impl Executor {
                 .and_then(|n| n.corner)
                 .is_some_and(|c| c.enter_at == act.idx);
             if handoff {
+                // The position events of the segment left: into the first half of the
+                // corner path, by where they are in the part the corner replaces.
+                let enter = act.idx;
+                let len = act.seg.samples.len().saturating_sub(enter).max(1);
+                for t in act.seg.triggers.get(act.trig..).unwrap_or(&[]) {
+                    let at = 0.5 * (t.at + 1).saturating_sub(enter) as f64 / len as f64;
+                    if self.carry.len() < CARRY_CAPACITY {
+                        self.carry.push((act.seg.instr, t.key, at));
+                    } else {
+                        fire(&mut self.events, now, act.seg.instr, t.key);
+                    }
+                }
+                act.trig = act.seg.triggers.len();
                 if let Some(next) = self.queue.pop_front()
                     && let Some(old) = self.active.replace(Active {
                         seg: next,
                         in_corner: true,
                         idx: 0,
+                        trig: 0,
                     })
                 {
                     self.last_done = Some(old.seg.instr);
@@ -626,6 +686,13 @@ impl Executor {
             }
             if let Some(s) = act.seg.samples.get(act.idx).copied() {
                 let first = act.idx == 0;
+                while let Some(t) = act.seg.triggers.get(act.trig) {
+                    if t.at > act.idx {
+                        break;
+                    }
+                    fire(&mut self.events, now, act.seg.instr, t.key);
+                    act.trig += 1;
+                }
                 act.idx += 1;
                 let last = act.idx >= act.seg.samples.len();
                 let fine = act.seg.fine;

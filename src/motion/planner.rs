@@ -10,12 +10,14 @@ mod corner;
 pub mod path;
 mod sampling;
 mod track;
+mod triggers;
 
 use std::time::Duration;
 
 use nalgebra::Point3;
 
 use crate::robot::command::{MotionCommand, MoveArgs, SpeedOverride};
+use crate::robot::trigger::PathTrigger;
 use crate::robot::{
     JointsDeg, KinError, Pose, Robot, ToolData, flange_target, frames::target_from_flange,
 };
@@ -64,6 +66,10 @@ pub struct Planner {
     prev: Option<Prev>,
     prev_spare: Prev,
     spare: Vec<Segment>,
+    /// Position events and instruction name for the next planned move
+    /// ([`Planner::set_triggers`]).
+    pending_triggers: Vec<PathTrigger>,
+    pending_name: Option<&'static str>,
 }
 
 /// The measured shape of a move: TCP path length (mm) and reorientation (deg).
@@ -89,6 +95,8 @@ impl Planner {
             prev: None,
             prev_spare: Prev::default(),
             spare: Vec::new(),
+            pending_triggers: Vec::new(),
+            pending_name: None,
         }
     }
 
@@ -130,6 +138,15 @@ impl Planner {
         self.settings = s;
     }
 
+    /// Position events for the next move planned (consumed by the next [`Planner::plan`],
+    /// also when it fails), and the name of the RAPID instruction it comes from when that is
+    /// not the command's own (`MoveLDO`, `TriggL`, `SearchL`).
+    pub fn set_triggers(&mut self, triggers: &[PathTrigger], name: Option<&'static str>) {
+        self.pending_triggers.clear();
+        self.pending_triggers.extend_from_slice(triggers);
+        self.pending_name = name;
+    }
+
     /// Give a used segment back so its buffers are reused.
     pub fn recycle(&mut self, mut seg: Segment) {
         seg.clear();
@@ -141,11 +158,44 @@ impl Planner {
     /// Plan one move from the end of the previous one. On error nothing changes: the robot
     /// keeps its plan and the move is not executed.
     pub fn plan(&mut self, cmd: &MotionCommand) -> Result<Planned, MotionError> {
+        let name = self.pending_name.take().unwrap_or(cmd.name());
+        let triggers = std::mem::take(&mut self.pending_triggers);
+        let planned = self.plan_named(cmd, name);
+        let mut triggers = triggers;
+        let result = match planned {
+            Ok(mut p) => {
+                let start_tcp = self
+                    .robot
+                    .tcp_world(&p.segment.start, &cmd.args().tool)
+                    .translation
+                    .vector
+                    .into();
+                triggers::place_all(
+                    &p.segment.samples,
+                    start_tcp,
+                    &triggers,
+                    self.dt,
+                    &mut p.segment.triggers,
+                );
+                Ok(p)
+            }
+            Err(e) => Err(e),
+        };
+        triggers.clear();
+        self.pending_triggers = triggers;
+        result
+    }
+
+    fn plan_named(
+        &mut self,
+        cmd: &MotionCommand,
+        name: &'static str,
+    ) -> Result<Planned, MotionError> {
         let args = cmd.args();
         validate(args)?;
         let instr = InstrRef {
             id: args.id,
-            name: cmd.name(),
+            name,
             source: args.source,
         };
         let geometry = self.geometry(cmd)?;

@@ -23,6 +23,16 @@ pub struct CornerSpan {
     pub resume_at: usize,
 }
 
+/// A position event of a segment: fires in the cycle that plays own sample `at` (or, when the
+/// sample is replaced by a corner path, at the matching share of the corner path).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SegTrigger {
+    /// The key the caller gave the event.
+    pub key: u64,
+    /// Index of the sample where it fires.
+    pub at: usize,
+}
+
 /// One planned move, ready for the executor: a sample per motion cycle.
 ///
 /// `samples[k]` is the robot at `(k + 1)` cycles after the move starts; the last sample is the
@@ -43,6 +53,8 @@ pub struct Segment {
     pub fine: bool,
     /// A fly-by point with a non-empty zone.
     pub flyby: bool,
+    /// Position events, sorted by sample index.
+    pub triggers: Vec<SegTrigger>,
 }
 
 impl Segment {
@@ -60,6 +72,7 @@ impl Segment {
             corner_samples: Vec::new(),
             fine: true,
             flyby: false,
+            triggers: Vec::new(),
         }
     }
 
@@ -68,6 +81,7 @@ impl Segment {
         self.samples.clear();
         self.corner = None;
         self.corner_samples.clear();
+        self.triggers.clear();
     }
 
     /// The last sample (the target).

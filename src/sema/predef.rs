@@ -128,6 +128,20 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
     // U+0000–U+00FF of a string (`functions::raw_bytes`).
     ("rawbytes", &[("len", "num"), ("bytes", "string")]),
     ("iodev", &[("id", "num")]),
+    // A position event (`interp/builtins/motion_events/trigg.rs`).
+    (
+        "triggdata",
+        &[
+            ("kind", "num"),
+            ("distance", "num"),
+            ("start", "bool"),
+            ("time", "bool"),
+            ("lead", "num"),
+            ("signal", "string"),
+            ("value", "dnum"),
+            ("intno", "num"),
+        ],
+    ),
     ("dir", &[("id", "num")]),
     (
         "trapdata",

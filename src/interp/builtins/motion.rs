@@ -8,7 +8,7 @@
 
 pub(super) mod data;
 mod moves;
-mod position;
+pub(super) mod position;
 mod settings;
 
 use super::{Ctx, NativeFn, Registry};

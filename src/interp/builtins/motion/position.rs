@@ -31,7 +31,11 @@ fn check_task(cx: &Ctx<'_>, i: usize) -> Exec<()> {
 
 /// The TCP of `tool` now, as a robtarget in `wobj` with the active program displacement
 /// removed.
-fn current_target(cx: &mut Ctx<'_>, tool: &ToolData, wobj: &WobjData) -> Exec<RobTarget> {
+pub(crate) fn current_target(
+    cx: &mut Ctx<'_>,
+    tool: &ToolData,
+    wobj: &WobjData,
+) -> Exec<RobTarget> {
     let joints = cx.host().motion_joints().map_err(|e| cx.host_err(e))?;
     let pdisp = cx.it.host.motion_modes().pdisp;
     cx.it
