@@ -24,14 +24,28 @@ use rapidvc::source::SourceMap;
 
 use rapidvc_testkit::gen_program;
 
-/// VmHWM (peak RSS) in kB from /proc/self/status (0 where there is none).
-fn peak_rss_kb() -> u64 {
+/// A field of /proc/self/status in kB (0 where there is none).
+fn status_kb(field: &str) -> u64 {
     std::fs::read_to_string("/proc/self/status")
         .unwrap_or_default()
         .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .find_map(|l| l.strip_prefix(field))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
         .unwrap_or(0)
+}
+
+/// VmHWM (peak RSS) in kB.
+fn peak_rss_kb() -> u64 {
+    status_kb("VmHWM:")
+}
+
+/// Print the resident and peak memory after a stage of the check.
+fn stage(form: &str, name: &str) {
+    println!(
+        "check_memory {form}: after {name:<10} RSS {:>5.0} MB, peak {:>5.0} MB",
+        status_kb("VmRSS:") as f64 / 1e3,
+        peak_rss_kb() as f64 / 1e3
+    );
 }
 
 /// The diagnostic codes and how often each was reported.
@@ -54,8 +68,11 @@ fn measure(form: &str, path: &Path) {
     let mut map = SourceMap::new();
     let mut diags = Diagnostics::new();
     let id = rapidvc::program::rapid_files::load_file(&mut map, path).expect("read the program");
+    stage(form, "reading");
     let file = rapidvc::parse::parse_file(id, &map.get(id).text, &mut diags);
+    stage(form, "parsing");
     rapidvc::parse::check_structure(&file, &mut diags);
+    stage(form, "structure");
     let registry = rapidvc::interp::Registry::standard();
     let files = [file];
     rapidvc::program::check_files(
@@ -65,6 +82,7 @@ fn measure(form: &str, path: &Path) {
         &registry,
         &mut diags,
     );
+    stage(form, "sema");
     let peak = peak_rss_kb();
     let codes = codes(&diags);
     let expected: &[&str] = match form {

@@ -1,10 +1,12 @@
 //! Throughput of parse + structural check on a generated multi-MB program mixing every
 //! construct. Run: `cargo bench --bench parse` (criterion reports MB/s).
 //!
-//! Two figures: `parse_and_check_4MB` as `rapidvc check` parses (the module body cut at
+//! Three figures: `parse_and_check_4MB` as `rapidvc check` parses (the module body cut at
 //! routine starts and parsed on every core, see `parse::ParseOptions`), and
-//! `parse_and_check_4MB_one_thread` on the calling thread only. Both with the binary's
-//! allocator (mimalloc), and both include freeing the tree.
+//! `parse_and_check_4MB_one_thread` on the calling thread only, and
+//! `parse_and_check_4MB_one_thread_unpacked` without packing literal aggregates (as trees, as
+//! before they were packed: the ratio of the two is the cost or gain of packing). All with the
+//! binary's allocator (mimalloc), and all include freeing the tree.
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -26,6 +28,13 @@ fn bench(c: &mut Criterion) {
         (
             "parse_and_check_4MB_one_thread",
             ParseOptions::single_thread(),
+        ),
+        (
+            "parse_and_check_4MB_one_thread_unpacked",
+            ParseOptions {
+                pack_literal_aggregates: false,
+                ..ParseOptions::single_thread()
+            },
         ),
     ] {
         g.bench_function(name, |b| {

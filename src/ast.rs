@@ -7,14 +7,19 @@
 use crate::source::{Span, Spanned};
 
 mod dump;
+pub(crate) mod literal;
+
+/// A name as written: [`EcoString`] keeps up to 15 bytes without an allocation (nearly every
+/// RAPID name), and reads as a `&str`.
+pub use ecow::EcoString;
 
 /// An identifier with its original spelling and position.
-pub type Ident = Spanned<String>;
+pub type Ident = Spanned<EcoString>;
 
 impl Ident {
     /// The case-folded (ASCII upper-case) spelling used for all name comparisons.
     pub fn folded(&self) -> String {
-        self.node.to_ascii_uppercase()
+        self.node.as_str().to_ascii_uppercase()
     }
 
     /// Case-insensitive comparison with a name.
@@ -436,6 +441,12 @@ pub enum ExprKind {
     },
     /// `[e1, e2, …]` — record or array aggregate, typed from context.
     Aggregate(Vec<Expr>),
+    /// An aggregate of literals only (numbers with an optional sign, strings, `TRUE`,
+    /// `FALSE`, nested aggregates of these), as robtargets and tool data are written, kept as
+    /// its text: most of the bytes of real programs are such aggregates, and the text is
+    /// about a tenth of the tree. [`Expr::aggregate_items`] and [`PackedAggregate::unpack`]
+    /// give the [`ExprKind::Aggregate`] tree the parser would have built, spans included.
+    PackedAggregate(PackedAggregate),
     /// Prefix operator.
     Unary {
         /// Operator.
@@ -456,6 +467,58 @@ pub enum ExprKind {
     Paren(Box<Expr>),
     /// A placeholder such as `<EXP>` or `<VAR>`.
     Placeholder(Placeholder),
+}
+
+/// The text of a literal aggregate, from its `[` to its `]` (see
+/// [`ExprKind::PackedAggregate`]). The parser packs an aggregate only when reading it reported
+/// nothing, so unpacking cannot fail.
+#[derive(Clone, PartialEq, Eq)]
+pub struct PackedAggregate(Box<str>);
+
+impl PackedAggregate {
+    /// Pack `text`, which the parser has read as a literal aggregate without a diagnostic.
+    pub(crate) fn new(text: &str) -> Self {
+        PackedAggregate(text.into())
+    }
+
+    /// The aggregate as written.
+    pub fn text(&self) -> &str {
+        &self.0
+    }
+
+    /// The [`ExprKind::Aggregate`] tree of this aggregate written at `span` (the span of the
+    /// expression that holds it): the tree the parser builds for it, node for node.
+    pub fn unpack(&self, span: Span) -> Expr {
+        literal::unpack_aggregate(span.source, &self.0, span.start as usize)
+    }
+}
+
+impl std::fmt::Debug for PackedAggregate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "PackedAggregate({:?})", self.0)
+    }
+}
+
+impl Expr {
+    /// The items of an aggregate, packed or not; `None` for any other expression.
+    pub fn aggregate_items(&self) -> Option<std::borrow::Cow<'_, [Expr]>> {
+        match &self.kind {
+            ExprKind::Aggregate(items) => Some(std::borrow::Cow::Borrowed(items)),
+            ExprKind::PackedAggregate(p) => match p.unpack(self.span).kind {
+                ExprKind::Aggregate(items) => Some(std::borrow::Cow::Owned(items)),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// This expression with a packed aggregate unpacked (borrowed as it is otherwise).
+    pub fn unpacked(&self) -> std::borrow::Cow<'_, Expr> {
+        match &self.kind {
+            ExprKind::PackedAggregate(p) => std::borrow::Cow::Owned(p.unpack(self.span)),
+            _ => std::borrow::Cow::Borrowed(self),
+        }
+    }
 }
 
 /// Prefix operators.

@@ -1,4 +1,4 @@
-//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices), `MOC.cfg` (External Motion Interface Data) and `SYS.cfg` (read only for `ReadCfgData`).
+//! System parameters from ABB CFG files in a configuration directory: `EIO.cfg` (I/O signals), `SIO.cfg` (UdpUc devices), `MOC.cfg` (External Motion Interface Data) and `SYS.cfg` (the RAPID tasks, [`sys`]; and `ReadCfgData`).
 //!
 //! [`load_dir`] finds each domain's file case-insensitively in the directory (or in its
 //! `SYSPAR` subdirectory, the layout of a controller backup), adds it to the
@@ -21,6 +21,7 @@ pub mod eio;
 mod error;
 pub mod moc;
 pub mod sio;
+pub mod sys;
 
 use std::path::{Path, PathBuf};
 
@@ -43,6 +44,8 @@ pub struct Config {
     /// Every CFG file read, as parsed (`EIO.cfg`, `SIO.cfg`, `MOC.cfg` and `SYS.cfg`): the
     /// configuration database `ReadCfgData` reads (`system::cfg_data`).
     pub files: Vec<cfg::CfgFile>,
+    /// The RAPID tasks of `SYS.cfg` (`CAB_TASKS`); one motion task `T_ROB1` without it.
+    pub sys: sys::SysConfig,
 }
 
 /// How [`load_dir_with`] reads the files.
@@ -172,8 +175,12 @@ pub fn load_dir_with(
         .as_ref()
         .map(|f| moc::read(f, diags))
         .unwrap_or_default();
-    // SYS.cfg only feeds the configuration database.
+    // SYS.cfg: the tasks, and the configuration database.
     let sys_file = load("SYS", sources, diags);
+    let sys = sys_file
+        .as_ref()
+        .map(|f| sys::read(f, diags))
+        .unwrap_or_default();
     let files = [eio_file, sio_file, moc_file, sys_file]
         .into_iter()
         .flatten()
@@ -183,5 +190,6 @@ pub fn load_dir_with(
         sio,
         moc,
         files,
+        sys,
     }
 }

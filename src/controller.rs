@@ -26,6 +26,7 @@ pub mod sample_feed;
 pub mod service;
 pub mod signal_script;
 pub mod summary;
+pub mod tasks;
 pub mod tick_sink;
 mod virtual_driver;
 

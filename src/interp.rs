@@ -42,8 +42,10 @@ mod interrupts;
 pub mod operator;
 pub mod pers;
 mod place;
+pub mod relink;
 pub mod stdlib;
 mod stmt;
+pub mod tasks;
 pub mod value;
 
 use std::sync::Arc;
@@ -136,6 +138,8 @@ struct Frame {
     at: Span,
     /// Inside its ERROR handler: the error being handled.
     handling: Option<Box<RuntimeError>>,
+    /// `RETRY`s already made of the statement whose error is being handled.
+    retries: u32,
 }
 
 /// An argument of a native call.
@@ -199,6 +203,13 @@ pub struct Interp {
     data_values: u64,
     /// The mass storage and the files and directories the program has open.
     files: files::Files,
+    /// Running as one task of several: shared persistents and time slices (`tasks.rs`).
+    task: Option<Box<tasks::TaskLink>>,
+    /// The natives and engine the program was built with, and the loader that links
+    /// modules into it while it runs (`Load`, `UnLoad`, …; see [`relink`]).
+    registry: Arc<Registry>,
+    engine: Engine,
+    modules: relink::Modules,
 }
 
 impl std::fmt::Debug for Interp {
@@ -273,6 +284,10 @@ impl Interp {
             module_values,
             data_values: module_values,
             files: files::Files::default(),
+            task: None,
+            registry: Arc::new(registry.clone()),
+            engine,
+            modules: relink::Modules::default(),
         }
     }
 
@@ -405,6 +420,7 @@ impl Interp {
         let r = prog.routine(rid);
         let args: Vec<crate::ir::Arg> = r.params.iter().map(|_| crate::ir::Arg::Absent).collect();
         let res = self.call_routine(&prog, rid, &args, r.head_span);
+        self.publish_shared();
         self.data_values = self.module_values;
         self.frames.clear();
         self.stack.clear();
@@ -561,6 +577,7 @@ impl Interp {
         if self.stop.is_some() {
             self.next_poll = self.next_poll.min(self.steps + STOP_CHECK_EVERY);
         }
+        self.next_poll = self.next_poll.min(self.next_task_switch());
     }
 
     /// Build a RAPID error at `span` with the current call stack.

@@ -27,7 +27,7 @@ pub use self::core::{EnqueueError, MotionCore};
 pub use crate::time::{Clock, RobotTime, VirtualClock, VirtualClockHandle};
 pub use correction::{PathCorrection, PathPoint};
 pub use event::{InstrRef, MotionError, MotionEvent, PathPlace, Severity};
-pub use executor::Executor;
+pub use executor::{Executor, PathOp, PathOpError};
 pub use external_guidance::{ExternalGuidance, GuidanceStep};
 pub use planner::Planner;
 pub use settings::{AccSet, CoreConfig, MotionSettings, SingArea, VelSet};

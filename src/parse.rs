@@ -74,6 +74,10 @@ pub struct ParseOptions {
     /// literal aggregates (`parse/marks.rs`): about 20% faster, same result. Off only to
     /// compare the two in tests.
     pub lexical_marks: bool,
+    /// Keep each aggregate of literals only (robtargets, tool data) as its text
+    /// ([`ast::ExprKind::PackedAggregate`]) rather than as a tree: about a tenth of the
+    /// memory, same meaning. Off only to compare the two in tests.
+    pub pack_literal_aggregates: bool,
 }
 
 impl ParseOptions {
@@ -96,6 +100,7 @@ impl Default for ParseOptions {
                 .get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(8))),
             parallel_min_bytes: 256 << 10,
             lexical_marks: true,
+            pack_literal_aggregates: true,
         }
     }
 }

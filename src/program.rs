@@ -13,10 +13,15 @@
 //!   [`SourceMap`] across several module sets (the tasks of one controller): parse every
 //!   module into the shared map, then check each set against the shared signals.
 //!
+//! * [`system::load_system`]: a whole system of several tasks, from a controller backup
+//!   folder or from files with task prefixes (`T_ROB1=main.mod`), the tasks from SYS.cfg.
+//!
 //! Problems are collected in [`Loaded::diags`], never returned early: a program is produced
 //! only when there is no error (warnings are allowed).
 
 pub mod rapid_files;
+pub mod runtime_loader;
+pub mod system;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -136,8 +141,10 @@ fn signal_table(cfg: &config::Config, diags: &mut Diagnostics) -> Arc<SignalTabl
 
 /// The semantic check of `rapidvc check`: the given files are one program (the modules of a
 /// task), unless two files declare the same global name, which means they are independent
-/// programs (a folder such as `programs/manual`): then each file is checked on its own, with
-/// the configuration next to it.
+/// programs (a folder such as `programs/manual`, or the program modules of several tasks
+/// beside the system modules they share): then each program module is checked with every
+/// system module of the set (`SYSMODULE`, or a `.sys` file), with the configuration next to
+/// it; system modules alone are checked on their own.
 pub fn check_files(
     user: &[ast::File],
     paths: &[PathBuf],
@@ -159,12 +166,43 @@ pub fn check_files(
         }
         return;
     }
-    for file in user {
+    let is_system = |f: &ast::File, sources: &SourceMap| {
+        let name = &sources.get(f.span.source).name;
+        let sys_ext = Path::new(name)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("sys"));
+        sys_ext
+            || f.modules.iter().any(|m| {
+                m.attrs
+                    .iter()
+                    .any(|a| matches!(a.node, ast::ModuleAttr::SysModule))
+            })
+    };
+    let system: Vec<ast::File> = user
+        .iter()
+        .filter(|f| is_system(f, sources))
+        .cloned()
+        .collect();
+    let programs: Vec<&ast::File> = user.iter().filter(|f| !is_system(f, sources)).collect();
+    // A system module's own problems are reported once, whichever program shows them.
+    let mut seen = std::collections::HashSet::new();
+    let alone: Vec<&ast::File> = if programs.is_empty() {
+        user.iter().collect()
+    } else {
+        programs
+    };
+    for file in alone {
         let path = PathBuf::from(&sources.get(file.span.source).name);
         let dir = config_dir(None, std::slice::from_ref(&path));
         let signals = load_signals(dir.as_deref(), sources, diags);
-        for e in sema_errors(std::slice::from_ref(file), sources, &signals, registry) {
-            diags.push(e);
+        let mut set = vec![file.clone()];
+        if !is_system(file, sources) {
+            set.extend(system.iter().cloned());
+        }
+        for e in sema_errors(&set, sources, &signals, registry) {
+            if e.span.source == file.span.source || seen.insert(format!("{e:?}")) {
+                diags.push(e);
+            }
         }
     }
 }
@@ -368,6 +406,32 @@ mod tests {
         );
         let id = err.source_id().expect("in a module");
         assert_eq!(loaded.sources.get(id).name, "task2/broken.mod");
+    }
+
+    #[test]
+    fn programs_of_several_tasks_are_checked_with_their_system_modules() {
+        // Two tasks' program modules (both with `main`) beside the system module they share,
+        // as in a backup or a ROS driver's folder.
+        let mut sources = SourceMap::new();
+        let mut diags = Diagnostics::new();
+        let registry = Registry::standard();
+        let shared = "MODULE shared(SYSMODULE)\n  PROC greet(num n)\n    TPWrite \"hi\"\\Num:=n;\n  ENDPROC\nENDMODULE\n";
+        let t1 = "MODULE t1\n  PROC main()\n    greet 1;\n  ENDPROC\nENDMODULE\n";
+        let t2 = "MODULE t2\n  PROC main()\n    greet 2;\n    missing_one;\n  ENDPROC\nENDMODULE\n";
+        let files = [
+            parse_module(&mut sources, "d/shared.sys", shared, &mut diags),
+            parse_module(&mut sources, "d/t1.mod", t1, &mut diags),
+            parse_module(&mut sources, "d/t2.mod", t2, &mut diags),
+        ];
+        let paths = [PathBuf::from("d/t1.mod")];
+        check_files(&files, &paths, &mut sources, &registry, &mut diags);
+        // (The folder does not exist, so its configuration cannot be read: not asserted.)
+        let errors: Vec<String> = diags
+            .iter()
+            .map(|d| d.to_string())
+            .filter(|d| !d.starts_with("cannot read"))
+            .collect();
+        assert_eq!(errors, ["`missing_one` is not supported by rapidvc"]);
     }
 
     #[test]

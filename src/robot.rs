@@ -12,6 +12,7 @@ mod catalog;
 pub mod command;
 pub mod conf;
 pub mod error;
+pub mod frame_points;
 pub mod frames;
 pub mod kinematics;
 pub mod model;

@@ -267,7 +267,7 @@ impl<'a> Checker<'a> {
 
     fn add_module(&mut self, m: &'a ast::Module, stdlib: bool) {
         self.modules.push(ModuleInfo {
-            name: m.name.node.clone(),
+            name: m.name.node.to_string(),
             source: m.span.source,
             stdlib,
         });

@@ -125,7 +125,7 @@ impl<T> std::ops::Deref for Spanned<T> {
 }
 
 /// One loaded file: its display name, decoded text and line starts.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct SourceFile {
     /// Display name (usually the path as given).
     pub name: String,
@@ -212,7 +212,7 @@ pub fn decode_bytes(bytes: &[u8]) -> String {
 }
 
 /// All files of one program (and the embedded stdlib), addressed by [`SourceId`].
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct SourceMap {
     files: Vec<SourceFile>,
 }

@@ -51,3 +51,24 @@ fn failing_tests_are_reported_with_location() {
     assert!(stdout.ends_with("1 passed, 1 failed\n"), "{stdout}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The modules loaded at run time and the data search run the same on the tree-walking
+/// engine (the whole suite runs on both in `interp_agree`; these change the program while
+/// it runs, so they are run here on the reference engine too).
+#[test]
+fn module_tests_pass_on_the_tree_walker() {
+    let out = rapidvc!()
+        .args([
+            "test",
+            "tests/rapid/modules.mod",
+            "tests/rapid/data_search.mod",
+            "tests/rapid/file_rawbytes.mod",
+        ])
+        .env("RAPIDVC_ENGINE", "tree-walk")
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run rapidvc test");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    assert!(stdout.ends_with("14 passed, 0 failed\n"), "{stdout}");
+}

@@ -408,5 +408,6 @@ fn sexpr(e: &Expr, s: &mut String) {
             s.push(')');
         }
         ExprKind::Placeholder(p) => s.push_str(p.as_str()),
+        ExprKind::PackedAggregate(p) => sexpr(&p.unpack(e.span), s),
     }
 }

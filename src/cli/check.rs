@@ -49,6 +49,9 @@ enum Depth {
 
 /// Run the check.
 pub fn run(args: CheckArgs) -> ExitCode {
+    if !args.syntax && is_system(&args.paths) {
+        return check_system(&args);
+    }
     let files = match rapid_files::find_rapid_files(&args.paths) {
         Ok(f) => f,
         Err(e) => {
@@ -95,6 +98,29 @@ pub fn run(args: CheckArgs) -> ExitCode {
     if io_failed {
         ExitCode::from(2)
     } else if diags.has_errors() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// True when the paths are a controller backup folder or carry task prefixes
+/// (`T_ROB1=main.mod`): each task is then checked as its own program.
+fn is_system(paths: &[PathBuf]) -> bool {
+    use program::system::{is_backup, split_task_prefix};
+    matches!(paths, [one] if is_backup(one))
+        || paths.iter().any(|p| split_task_prefix(p).0.is_some())
+}
+
+/// Check every task of a system (see `program::system`), with the checks across tasks.
+fn check_system(args: &CheckArgs) -> ExitCode {
+    let mut loaded = program::system::load_system(&args.paths, None);
+    let files: usize = loaded.tasks.iter().map(|t| t.files.len()).sum();
+    loaded.diags.sort();
+    report(&loaded.diags, &loaded.sources, args.format, files);
+    if loaded.io_failed {
+        ExitCode::from(2)
+    } else if loaded.diags.has_errors() {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS

@@ -21,6 +21,7 @@ use crate::program;
 
 pub mod egm_options;
 pub mod socket_clock;
+pub mod tasks;
 pub mod view_options;
 use crate::controller::egm_controller::EgmController;
 use crate::controller::{
@@ -185,6 +186,9 @@ pub fn run(args: RunArgs) -> ExitCode {
             Arc::new(AtomicBool::new(false))
         }
     };
+    if tasks::wants_system(&args) {
+        return tasks::run(args, interrupted);
+    }
     let loaded = program::load(&args.files, args.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
     let Some(prog) = loaded.program.clone() else {
@@ -208,7 +212,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         eprintln!("interrupted before the program started");
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
-    let system = system_services(&args, &loaded);
+    let system = system_services(&args, &loaded.config, &loaded.sources);
     let registry = loaded.registry;
     let signals = loaded.signals;
     let script = match read_signal_script(args.signal_script.as_deref(), &signals) {
@@ -245,6 +249,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let tee = view.as_ref().map(view_options::ViewRun::session);
+    let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
         .with_signals(signals)
@@ -261,6 +266,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             print_output(o);
         });
     let mut it = Interp::new(prog, &registry, Box::new(host));
+    it.set_module_loader(Box::new(loader));
     it.set_mass_storage(Arc::new(MassStorage::new(args.home.clone())));
     it.set_budget(args.max_steps);
     it.set_stop_request(Arc::clone(&interrupted));
@@ -359,9 +365,12 @@ pub fn run(args: RunArgs) -> ExitCode {
 /// The controller's system side of this run: the calendar (`--date`), the robot (`--robot`),
 /// the configuration database of the configuration directory (which SaveCfgData may write
 /// into with `--save-cfg`).
-fn system_services(args: &RunArgs, loaded: &program::Loaded) -> crate::system::Services {
-    let mut cfg =
-        crate::system::cfg_data::CfgData::from_files(&loaded.config.files, &loaded.sources);
+fn system_services(
+    args: &RunArgs,
+    config: &crate::config::Config,
+    sources: &SourceMap,
+) -> crate::system::Services {
+    let mut cfg = crate::system::cfg_data::CfgData::from_files(&config.files, sources);
     if args.save_cfg
         && let Some(dir) = program::config_dir(args.config.as_deref(), &args.files)
     {
@@ -524,7 +533,8 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
             }
             Err(e) => {
                 let _ = std::io::stdout().flush();
-                render::runtime_error(&e, sources);
+                // An error in a module loaded while the program ran points into it.
+                render::runtime_error(&e, it.loaded_sources().unwrap_or(sources));
                 return (ExitCode::from(1), false);
             }
         }

@@ -114,7 +114,16 @@ pub fn run(args: TestArgs) -> ExitCode {
             it.set_budget(Some(args.max_steps));
             it.set_stack_budget(6 << 20);
             it.set_operator(super::answers::operator(answers.as_ref(), Some(&name)));
+            it.set_module_loader(Box::new(
+                crate::program::runtime_loader::RuntimeLoader::new(
+                    &prog,
+                    &loaded.sources,
+                    &loaded.signals,
+                ),
+            ));
             let res = it.init().and_then(|_| it.run(&name));
+            // Errors in modules loaded by the test point into the loader's sources.
+            let sources = it.loaded_sources().unwrap_or(&loaded.sources);
             let label = format!("test {} :: {name}", file.display());
             match res {
                 Ok(Outcome::Completed | Outcome::Exited | Outcome::ExitCycle) => {
@@ -127,11 +136,7 @@ pub fn run(args: TestArgs) -> ExitCode {
                 }
                 Err(e) => {
                     println!("{label} ... FAILED");
-                    println!(
-                        "    {}: {}",
-                        loaded.sources.location(e.span),
-                        failure_text(&e)
-                    );
+                    println!("    {}: {}", sources.location(e.span), failure_text(&e));
                     if let Ok(lines) = tp.lock() {
                         for l in lines.iter() {
                             println!("    | {l}");

@@ -321,6 +321,46 @@ pub enum ConfigError {
         name: String,
     },
 
+    /// The same task name twice in SYS.cfg's `CAB_TASKS`.
+    #[error("task `{name}` is defined twice in CAB_TASKS")]
+    #[diagnostic(
+        code(rapidvc::config::duplicate_task),
+        help("task names are case-insensitive; the first definition is used")
+    )]
+    DuplicateTask {
+        /// The file.
+        src: SourceId,
+        /// The second definition's name.
+        #[label("defined again here")]
+        span: Span,
+        /// The first definition's name.
+        #[label("first defined here")]
+        first: Span,
+        /// The task name.
+        name: String,
+    },
+
+    /// More than one `-MotionTask` in `CAB_TASKS`: rapidvc has one robot.
+    #[error("task `{name}` is a second motion task; rapidvc has one robot and one motion task")]
+    #[diagnostic(
+        code(rapidvc::config::several_motion_tasks),
+        help(
+            "keep `-MotionTask` on one task; the first one keeps it, this one runs without motion"
+        )
+    )]
+    SeveralMotionTasks {
+        /// The file.
+        src: SourceId,
+        /// The second motion task's `-MotionTask`.
+        #[label("second motion task")]
+        span: Span,
+        /// The first motion task's `-MotionTask`.
+        #[label("first motion task")]
+        first: Span,
+        /// The second motion task's name.
+        name: String,
+    },
+
     /// A section rapidvc reads but whose behaviour it does not implement.
     #[error("{section} is not supported by rapidvc; its instances are ignored")]
     #[diagnostic(code(rapidvc::config::unsupported_section), severity(Warning))]
@@ -357,7 +397,9 @@ impl RapidDiagnostic for ConfigError {
             | ConfigError::DuplicateDevice { src, .. }
             | ConfigError::TooManyDevices { src, .. }
             | ConfigError::UnsupportedDevice { src, .. }
-            | ConfigError::DuplicateProfile { src, .. } => Some(*src),
+            | ConfigError::DuplicateProfile { src, .. }
+            | ConfigError::DuplicateTask { src, .. }
+            | ConfigError::SeveralMotionTasks { src, .. } => Some(*src),
         }
     }
 }

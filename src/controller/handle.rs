@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use crate::motion::{
     CoreMode, EnqueueError, ExternalGuidance, InstrRef, MotionCore, MotionError, MotionEvent,
-    MotionSettings, MotionState, Severity,
+    MotionSettings, MotionState, PathOp, PathOpError, Severity,
 };
 use crate::robot::command::MotionCommand;
 use crate::robot::{Robot, ToolData};
@@ -44,6 +44,9 @@ pub struct ControllerHandle {
     period: Duration,
     /// Set from outside (Ctrl-C): a submit blocked on a full queue gives up.
     interrupt: Option<Arc<AtomicBool>>,
+    /// Real time: the planning state of the path `StorePath` put aside (the virtual core
+    /// keeps its own).
+    stored_plan: Option<crate::motion::planner::PlanCheckpoint>,
     /// What the position events of the queued moves do.
     position: PositionEvents,
 }
@@ -113,6 +116,7 @@ impl ControllerHandle {
             max_wait: config.max_wait,
             period: core_config.period,
             interrupt: None,
+            stored_plan: None,
             position: PositionEvents::default(),
         })
     }
@@ -458,6 +462,63 @@ impl ControllerHandle {
                 self.position.route(&mut self.events, from, 0.0);
                 self.position.drop_pending();
             }
+        }
+    }
+
+    /// Hold, resume, store, restore or clear the path (`motion::PathOp`). A cleared path
+    /// that was moving brakes to rest first; planning then goes on from where the robot is.
+    pub fn path_op(&mut self, op: PathOp) -> Result<(), PathOpError> {
+        match &mut self.driver {
+            Driver::Virtual(v) => {
+                v.core.path_op(op)?;
+                if op == PathOp::Clear {
+                    for _ in 0..100_000 {
+                        if !v.core.state().moving {
+                            break;
+                        }
+                        v.tick(&mut self.events);
+                    }
+                    v.core.plan_from_here();
+                }
+                Ok(())
+            }
+            Driver::RealTime(r) => {
+                let (tx, rx) = std::sync::mpsc::sync_channel(1);
+                let gone = PathOpError::Unavailable;
+                r.control
+                    .send(Control::Path { op, reply: tx })
+                    .map_err(|_| gone)?;
+                rx.recv_timeout(Duration::from_secs(1))
+                    .map_err(|_| gone)??;
+                if op == PathOp::Clear {
+                    let _ = Self::settle(r, |p| !p.state.moving);
+                }
+                let here = r.published().state.setpoint.joints;
+                crate::motion::core::path_op_plan(&mut r.planner, &mut self.stored_plan, op, here);
+                Ok(())
+            }
+        }
+    }
+
+    /// Install a path correction of planned moves from the program side (the `\Corr`
+    /// generators); `false` when one is installed already. Virtual time only: in real time
+    /// the executor belongs to the motion thread.
+    pub fn install_path_correction(
+        &mut self,
+        correction: Box<dyn crate::motion::PathCorrection>,
+    ) -> Result<bool, ControllerError> {
+        match &mut self.driver {
+            Driver::Virtual(v) => {
+                let exec = v.core.executor_mut();
+                if exec.has_path_correction() {
+                    return Ok(false);
+                }
+                drop(exec.set_path_correction(Some(correction)));
+                Ok(true)
+            }
+            Driver::RealTime(_) => Err(ControllerError::Thread(
+                "correction generators (CorrCon) are not supported in real time yet".into(),
+            )),
         }
     }
 

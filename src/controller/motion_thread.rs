@@ -39,6 +39,11 @@ pub(super) enum Control {
     StopExternal {
         reply: SyncSender<Option<Box<dyn ExternalGuidance>>>,
     },
+    /// Hold, resume, store, restore or clear the path (`StopMove`, `StorePath`, …).
+    Path {
+        op: crate::motion::PathOp,
+        reply: SyncSender<Result<(), crate::motion::PathOpError>>,
+    },
     /// End the thread.
     Shutdown,
 }
@@ -185,6 +190,9 @@ impl RtLoop {
                 }
                 Ok(Control::StopExternal { reply }) => {
                     let _ = reply.try_send(self.exec.stop_external());
+                }
+                Ok(Control::Path { op, reply }) => {
+                    let _ = reply.try_send(self.exec.path_op(op));
                 }
                 Ok(Control::Shutdown) | Err(TryRecvError::Disconnected) => return true,
                 Err(TryRecvError::Empty) => return false,

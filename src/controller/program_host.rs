@@ -7,15 +7,19 @@
 //! The struct is built with `ControllerHost::new(handle)` and `with_*` methods, so other
 //! capabilities (EGM) can add fields and builders without touching the callers.
 
+mod corr_generators;
 mod egm_parts;
 mod motion_events;
+mod path_recovery;
 mod position_events;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use crate::interp::host::{MotionModes, MotionSetting, MotionWait, Output, SingAreaMode, no_robot};
+use crate::interp::host::{
+    MotionModes, MotionSetting, MotionWait, Output, PathCommand, SingAreaMode, no_robot,
+};
 use crate::interp::{Host, HostError, VirtualHost};
 use crate::motion::{MotionEvent, MotionState, SingArea};
 use crate::robot::command::{EXTAX_NONE, MotionCommand, RobTarget};
@@ -51,6 +55,11 @@ pub struct ControllerHost {
     void_up_to: u64,
     /// Moves accepted by the controller.
     submitted: u64,
+    /// The correction generators of `\Corr` moves (made at the first request).
+    corr: Option<path_recovery::Corr>,
+    /// `last_accepted` when `StorePath` put the path aside (the moves of the new path are
+    /// complete when `RestoPath` brings it back).
+    stored_accepted: Option<u64>,
     /// Error events not yet given to the program.
     errors: Vec<MotionEvent>,
     max_time: Option<f64>,
@@ -93,6 +102,8 @@ impl ControllerHost {
             last_accepted: 0,
             void_up_to: 0,
             submitted: 0,
+            stored_accepted: None,
+            corr: None,
             errors: Vec::new(),
             max_time: None,
             lines: None,
@@ -202,7 +213,8 @@ impl ControllerHost {
             .ok_or_else(|| ControllerError::Thread("the controller was already finished".into()))?;
         let stop = self.stop.clone();
         let stopped = move || stop.as_ref().is_some_and(|f| f.load(Ordering::Relaxed));
-        let drain = drain && !stopped();
+        // A path held by StopMove never completes: the robot stays where it holds.
+        let drain = drain && !stopped() && !ctl.state().held;
         if drain {
             let cond = if self.stop.is_some() {
                 Condition::Predicate(Box::new(move |s: &MotionState| {
@@ -494,8 +506,32 @@ impl Host for ControllerHost {
                 s.accset.ramp_pct = ramp_pct;
                 ctl.set_settings(s);
             }
+            MotionSetting::PathAccLim { acc, decel } => {
+                let lim = match (acc, decel) {
+                    (Some(a), Some(d)) => Some(a.min(d)),
+                    (a, d) => a.or(d),
+                };
+                s.path_acc_lim = lim;
+                ctl.set_settings(s);
+            }
+            MotionSetting::WorldAccLim(lim) => {
+                s.world_acc_lim = lim;
+                ctl.set_settings(s);
+            }
+            MotionSetting::EOffs(e) => self.modes.eoffs = e,
         }
         Ok(())
+    }
+
+    fn motion_path(&mut self, cmd: PathCommand) -> Result<(), HostError> {
+        path_recovery::run(self, cmd)
+    }
+
+    fn motion_corr(
+        &mut self,
+        req: crate::interp::host::CorrRequest,
+    ) -> Result<crate::interp::host::CorrAnswer, HostError> {
+        path_recovery::corr(self, req)
     }
 
     fn robot_target_of(

@@ -112,6 +112,10 @@ codes! {
     ParseTooManyErrors = "rapidvc::parse::too_many_errors";
     /// A file or directory cannot be read.
     LoadIo = "rapidvc::load::io";
+    /// A file prefix or backup folder names a task SYS.cfg does not define.
+    LoadUnknownTask = "rapidvc::load::unknown_task";
+    /// A task-global PERS declared with different types in two tasks.
+    LoadPersTypeMismatch = "rapidvc::load::pers_type_mismatch";
     /// The configuration directory or a file in it cannot be read.
     ConfigIo = "rapidvc::config::io";
     /// The first line is not a CFG header.
@@ -151,6 +155,10 @@ codes! {
     ConfigUnsupportedDevice = "rapidvc::config::unsupported_device";
     /// The same External Motion Interface Data name twice in MOC.cfg.
     ConfigDuplicateProfile = "rapidvc::config::duplicate_profile";
+    /// The same task name twice in SYS.cfg's CAB_TASKS.
+    ConfigDuplicateTask = "rapidvc::config::duplicate_task";
+    /// More than one motion task in SYS.cfg (rapidvc has one robot).
+    ConfigSeveralMotionTasks = "rapidvc::config::several_motion_tasks";
     /// A section rapidvc reads but whose behaviour it does not implement.
     ConfigUnsupportedSection = "rapidvc::config::unsupported_section";
     /// The configured signals cannot be used together.

@@ -6,9 +6,11 @@ mod bits;
 mod clock;
 mod core;
 mod data_by_name;
+pub(crate) mod data_search;
 mod dialogs;
 mod egm;
 mod egm_path;
+mod file_rawbytes;
 mod files;
 mod interrupts;
 mod io;
@@ -17,11 +19,14 @@ mod math;
 mod modules;
 mod motion;
 mod motion_events;
+mod motion_settings;
+mod path_recovery;
 mod pose;
 mod rawbytes;
 mod sockets;
 mod string;
 mod system;
+mod tasks;
 mod text;
 
 pub(crate) use math::whole;
@@ -97,13 +102,19 @@ impl Registry {
         data_by_name::register(&mut r);
         io_events::register(&mut r);
         motion::register(&mut r);
+        motion_settings::register(&mut r);
+        path_recovery::register(&mut r);
+        path_recovery::register_corr(&mut r);
         motion_events::register(&mut r);
         egm::register(&mut r);
         egm_path::register(&mut r);
         files::register(&mut r);
         modules::register(&mut r);
         rawbytes::register(&mut r);
+        file_rawbytes::register(&mut r);
+        data_search::register(&mut r);
         sockets::register(&mut r);
+        tasks::register(&mut r);
         r.custom.iter_mut().for_each(|c| *c = false);
         r
     }

@@ -217,6 +217,7 @@ impl Interp {
             bp: bp as u32,
             at: r.head_span,
             handling: None,
+            retries: 0,
         });
         let saved = (self.bp, self.rbp);
         (self.bp, self.rbp) = (bp, rbp);
@@ -481,7 +482,11 @@ impl Interp {
         module: crate::ir::ModuleId,
         span: Span,
     ) -> Exec<()> {
-        let p = &*c.prog;
+        // The callee is looked up in the program as it is now (modules may have been
+        // loaded since the caller's code was built); the caller's arguments are evaluated
+        // in the caller's.
+        let callee = self.code.clone();
+        let p = &*callee.prog;
         let (modname, procname) = match name.split_once(':') {
             Some((m, r)) => (Some(m.trim()), r.trim()),
             None => (None, name.trim()),
@@ -534,8 +539,8 @@ impl Interp {
         // Value arguments, checked against the parameter types before the call.
         let mut values = std::mem::take(&mut self.late_values);
         values.clear();
-        let r = self.late_values(c, r, &lowered, compiled, &mut values);
-        let r = r.and_then(|()| self.late_push(c, rid, &lowered, &mut values, span));
+        let r = self.late_values(c, p, r, &lowered, compiled, &mut values);
+        let r = r.and_then(|()| self.late_push(c, &callee, rid, &lowered, &mut values, span));
         values.clear();
         self.late_values = values;
         r
@@ -545,6 +550,7 @@ impl Interp {
     fn late_values(
         &mut self,
         c: &super::compile::Code,
+        callee: &Program,
         r: &Routine,
         lowered: &[(Arg, u32)],
         compiled: Option<&[Option<super::compile::ValFn>]>,
@@ -560,7 +566,7 @@ impl Interp {
                     Some(f) => f(self, c)?,
                     None => self.eval(p, e)?,
                 };
-                if !super::pers::fits(&p.types, q.ty, &v) {
+                if !super::pers::fits(&callee.types, q.ty, &v) {
                     return Err(self.error(
                         errnum::ERR_CALLPROC,
                         e.span,
@@ -568,7 +574,7 @@ impl Interp {
                             "argument for `{}` of `{}` must be {}",
                             q.name,
                             r.name,
-                            p.types.display(q.ty)
+                            callee.types.display(q.ty)
                         ),
                     ));
                 }
@@ -582,13 +588,14 @@ impl Interp {
     fn late_push(
         &mut self,
         c: &super::compile::Code,
+        callee: &super::compile::Code,
         rid: RoutineId,
         lowered: &[(Arg, u32)],
         values: &mut Vec<Value>,
         span: Span,
     ) -> Exec<()> {
         let p = &*c.prog;
-        let r = p.routine(rid);
+        let r = callee.prog.routine(rid);
         self.check_depth(span)?;
         let bp = self.sp;
         let rbp = self.refs.len();
@@ -610,7 +617,7 @@ impl Interp {
             }
         }
         drop(values);
-        self.enter(c, rid, bp, rbp, span).map(|_| ())
+        self.enter(callee, rid, bp, rbp, span).map(|_| ())
     }
 
     /// The arguments of a late-bound call matched to the parameters of `rid`.

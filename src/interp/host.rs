@@ -54,9 +54,11 @@ use crate::time::RobotTime;
 mod egm_host;
 mod egm_path_host;
 mod position_events;
+mod task_host;
 pub use egm_host::{EgmHost, EgmRun};
 pub use egm_path_host::EgmPathHost;
 pub use position_events::{PositionEventHost, ProgramAction, SearchStop, TriggAction, TriggEvent};
+pub use task_host::{RmqMessage, TaskHost};
 
 /// Something the program produced for the outside world.
 #[derive(Clone, Debug, PartialEq)]
@@ -161,6 +163,68 @@ pub enum MotionSetting {
     /// Program displacement (`PDispSet`, `PDispOn`); the identity switches it off
     /// (`PDispOff`).
     PDisp(Pose),
+    /// `PathAccLim`: TCP acceleration and deceleration limits along the path (mm/s²), `None`
+    /// for no limit.
+    PathAccLim {
+        /// `\AccMax`.
+        acc: Option<f64>,
+        /// `\DecelMax`.
+        decel: Option<f64>,
+    },
+    /// `WorldAccLim \On := x` (mm/s²) or `\Off` (`None`).
+    WorldAccLim(Option<f64>),
+    /// External axis offsets (`EOffsSet`, `EOffsOn`), `None` switches them off (`EOffsOff`).
+    EOffs(Option<[f64; 6]>),
+}
+
+/// A request to the correction generators (`CorrCon`, `CorrWrite`, …).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CorrRequest {
+    /// `CorrCon`: a new generator; answers its number.
+    Connect,
+    /// `CorrWrite`: the offset of generator `n` (path frame, mm).
+    Write(u32, [f64; 3]),
+    /// `CorrDiscon`: generator `n` is gone.
+    Disconnect(u32),
+    /// `CorrClear`: every generator is gone.
+    Clear,
+    /// `CorrRead`: answers the sum of the offsets.
+    Read,
+    /// The move with this id has `\Corr`.
+    Mark(u64),
+}
+
+/// The answer to a [`CorrRequest`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CorrAnswer {
+    /// The request was carried out.
+    Done,
+    /// The new generator's number.
+    Connected(u32),
+    /// The sum of the offsets (path frame, mm).
+    Offset([f64; 3]),
+}
+
+/// A change of the robot's path as a whole: `StopMove`, `StartMove`, `StorePath`, ….
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PathCommand {
+    /// `StopMove [\Quick]`: decelerate on the path and hold.
+    Stop {
+        /// `\Quick`.
+        quick: bool,
+    },
+    /// `StartMove`: resume the held path.
+    Start,
+    /// `StopMoveReset`: the stop-move state ends, the robot does not start.
+    Reset,
+    /// `SpeedRefresh Override`: the ongoing path at this percentage of its planned speed.
+    Speed(f64),
+    /// `StorePath`.
+    Store,
+    /// `RestoPath`.
+    Restore,
+    /// `ClearPath`.
+    Clear,
 }
 
 /// The modal settings move instructions read when they build a command.
@@ -172,6 +236,12 @@ pub struct MotionModes {
     pub conf_l: bool,
     /// The active program displacement (identity when off).
     pub pdisp: Pose,
+    /// External axis offsets (`EOffsOn`/`EOffsSet`), `None` when off.
+    pub eoffs: Option<[f64; 6]>,
+    /// The stop-move state (`StopMove` until `StartMove` or `StopMoveReset`).
+    pub stop_move: bool,
+    /// The speed override of `SpeedRefresh` (%).
+    pub speed_refresh: f64,
 }
 
 impl Default for MotionModes {
@@ -180,6 +250,9 @@ impl Default for MotionModes {
             conf_j: true,
             conf_l: true,
             pdisp: Pose::identity(),
+            eoffs: None,
+            stop_move: false,
+            speed_refresh: 100.0,
         }
     }
 }
@@ -254,6 +327,18 @@ pub trait Host {
         Err(no_robot())
     }
 
+    /// Change the robot's path as a whole (`StopMove`, `StartMove`, `StorePath`, …).
+    fn motion_path(&mut self, cmd: PathCommand) -> Result<(), HostError> {
+        let _ = cmd;
+        Err(no_robot())
+    }
+
+    /// The correction generators of `\Corr` moves (`CorrCon`, `CorrWrite`, …).
+    fn motion_corr(&mut self, req: CorrRequest) -> Result<CorrAnswer, HostError> {
+        let _ = req;
+        Err(no_robot())
+    }
+
     /// Where the TCP of `tool` is at `joints`, as a robtarget in the object frame of `wobj`
     /// with program displacement `pdisp` removed, with the configuration of `joints`
     /// (`CRobT`, `CalcRobT`).
@@ -308,6 +393,18 @@ pub trait Host {
     /// The position-event capability (`TriggL`, `MoveLDO`, `SearchL`, …), when this
     /// controller has one.
     fn position_events(&mut self) -> Option<&mut dyn PositionEventHost> {
+        None
+    }
+
+    /// Let the other RAPID tasks run (the end of a time slice; see `interp::tasks`). A host
+    /// of a single task returns at once.
+    fn yield_now(&mut self) -> Result<(), HostError> {
+        Ok(())
+    }
+
+    /// The capability of a host running among several RAPID tasks (`WaitSyncTask`, the
+    /// RAPID message queue, task numbers), `None` for a single task.
+    fn tasks(&mut self) -> Option<&mut dyn TaskHost> {
         None
     }
 }

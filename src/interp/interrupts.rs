@@ -102,6 +102,10 @@ pub(crate) struct Interrupts {
     pub watches: Vec<Watch>,
     pub pers_watches: Vec<PersWatch>,
     pub error_orders: Vec<ErrorOrder>,
+    /// `IRMQMessage` orders: (interrupt number, data type name).
+    pub rmq_orders: Vec<(i32, String)>,
+    /// The queue number of the last RAPID message an `IRMQMessage` interrupted for.
+    rmq_seen: u64,
     /// Events behind queued `IError` interrupts, in arrival order.
     events: VecDeque<(i32, LogEvent)>,
     /// The event of the running `IError` trap (`GetTrapData`).
@@ -122,6 +126,16 @@ pub(crate) struct Interrupts {
 }
 
 impl Interrupts {
+    /// A connected TRAP for which `keep` is false (the program is about to lose it).
+    pub fn traps_not_in(&self, keep: impl Fn(RoutineId) -> bool) -> Option<RoutineId> {
+        self.connected.values().copied().find(|&r| !keep(r))
+    }
+
+    /// Renumber the connected TRAPs (the program was relinked).
+    pub fn remap_traps(&mut self, f: impl Fn(RoutineId) -> RoutineId) {
+        self.connected.values_mut().for_each(|r| *r = f(*r));
+    }
+
     /// Is a TRAP routine running (`ExecLevel`)?
     pub fn in_trap(&self) -> bool {
         self.in_trap
@@ -132,6 +146,7 @@ impl Interrupts {
         !self.timers.is_empty()
             || !self.watches.is_empty()
             || !self.pers_watches.is_empty()
+            || !self.rmq_orders.is_empty()
             || !self.pending.is_empty()
             || !self.delayed.is_empty()
             || self.position
@@ -158,6 +173,7 @@ impl Interrupts {
         self.watches.retain(|w| w.intno != no);
         self.pers_watches.retain(|w| w.intno != no);
         self.error_orders.retain(|w| w.intno != no);
+        self.rmq_orders.retain(|w| w.0 != no);
         self.events.retain(|e| e.0 != no);
         self.pending.retain(|&n| n != no);
         self.asleep.remove(&no);
@@ -305,6 +321,15 @@ impl Interp {
     }
 
     /// Order an interrupt on event-log entries (`IError`).
+    /// `IRMQMessage`: interrupt `no` when a RAPID message of `datatype` arrives.
+    pub(crate) fn order_rmq(&mut self, no: i32, datatype: String, span: Span) -> Exec<()> {
+        self.check_intno(no, span)?;
+        self.ints.rmq_orders.retain(|o| o.0 != no);
+        self.ints.rmq_orders.push((no, datatype));
+        self.update_poll();
+        Ok(())
+    }
+
     pub(crate) fn order_error(&mut self, order: ErrorOrder, span: Span) -> Exec<()> {
         self.check_intno(order.intno, span)?;
         self.ints.error_orders.retain(|o| o.intno != order.intno);
@@ -471,6 +496,20 @@ impl Interp {
             }
             self.ints.pers_watches = watches;
         }
+        if !self.ints.rmq_orders.is_empty()
+            && let Some(m) = self.host.tasks().and_then(|t| t.rmq_peek())
+            && m.seq > self.ints.rmq_seen
+        {
+            self.ints.rmq_seen = m.seq;
+            if let Some((no, _)) = self
+                .ints
+                .rmq_orders
+                .iter()
+                .find(|(_, ty)| ty.eq_ignore_ascii_case(&m.datatype))
+            {
+                fired.push(*no);
+            }
+        }
         for no in fired {
             if !self.ints.queue(no) {
                 self.host.output(super::Output::Event(format!(
@@ -580,8 +619,7 @@ impl Interp {
             let Some(wake) = wake else {
                 return Err(self.fatal(super::ErrorKind::Host, span, "this wait can never end"));
             };
-            self.host
-                .wait_until(wake)
+            self.host_wait_until(wake)
                 .map_err(|e| self.host_error(e, span))?;
             self.service_interrupts(p, span)?;
         }

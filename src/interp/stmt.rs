@@ -74,32 +74,51 @@ impl Interp {
         retries: &mut u32,
     ) -> Exec<usize> {
         match u {
-            Unwind::Error(e) => match self.handle_error(p, e)? {
-                Resume::Retry => {
-                    *retries += 1;
-                    if *retries > self.retry_limit {
-                        let e = self.make_error(
-                            ErrorKind::Rapid(errnum::ERR_EXCRTYMAX),
-                            span,
-                            format!(
-                                "the statement failed again after {} RETRYs",
-                                self.retry_limit
-                            ),
-                        );
-                        return Err(Unwind::Propagate(e));
-                    }
-                    Ok(i)
+            Unwind::Error(e) => {
+                // What `RemainingRetries` reads in the handler.
+                if let Some(f) = self.frames.last_mut() {
+                    f.retries = *retries;
                 }
-                Resume::Next => {
-                    *retries = 0;
-                    Ok(i + 1)
-                }
-            },
+                self.after_error(p, e, span, i, retries)
+            }
             Unwind::Goto(l) => match labels.iter().find(|(id, _)| *id == l) {
                 Some(&(_, at)) => Ok(at as usize),
                 None => Err(Unwind::Goto(l)),
             },
             u => Err(u),
+        }
+    }
+
+    /// After statement `i` (at `span`) raised `e`: its handler, and RETRY with its limit or
+    /// TRYNEXT.
+    fn after_error(
+        &mut self,
+        p: &Program,
+        e: Box<RuntimeError>,
+        span: Span,
+        i: usize,
+        retries: &mut u32,
+    ) -> Exec<usize> {
+        match self.handle_error(p, e)? {
+            Resume::Retry => {
+                *retries += 1;
+                if *retries > self.retry_limit {
+                    let e = self.make_error(
+                        ErrorKind::Rapid(errnum::ERR_EXCRTYMAX),
+                        span,
+                        format!(
+                            "the statement failed again after {} RETRYs",
+                            self.retry_limit
+                        ),
+                    );
+                    return Err(Unwind::Propagate(e));
+                }
+                Ok(i)
+            }
+            Resume::Next => {
+                *retries = 0;
+                Ok(i + 1)
+            }
         }
     }
 
@@ -452,6 +471,10 @@ impl Interp {
                 f.at = span;
             }
             self.service_interrupts(p, span)?;
+        }
+        if self.task.is_some() {
+            self.task_slice_due()
+                .map_err(|e| self.host_error(e, span))?;
         }
         self.update_poll();
         Ok(())

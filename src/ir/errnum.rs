@@ -8,7 +8,7 @@
 //! | 1–90 | user error numbers (`RAISE 12;`) |
 //! | 500–999 | numbers handed out by `BookErrNo`, in booking order from 500 |
 //! | 1001–1099 | arithmetic and data (`ERR_DIVZERO` = 1001, …) |
-//! | 1101–1199 | routines and control (`ERR_NOTPRES`, `ERR_EXCRTYMAX`, `ERR_REFUNKPRC`, …) |
+//! | 1101–1199 | routines and control (`ERR_NOTPRES`, `ERR_EXCRTYMAX`, `ERR_REFUNKPRC`, …); 1150–1169: program modules at run time (`ERR_LOADED`, `ERR_SYNTAX`, …) |
 //! | 1201–1299 | interrupts |
 //! | 1301–1399 | waiting and the teach pendant (`ERR_WAIT_MAXTIME`, …) |
 //! | 1401–1499 | motion (`ERR_ROBLIMIT`, `ERR_OUTSIDE_REACH`, …) |
@@ -16,6 +16,7 @@
 //! | 1601–1699 | sockets and files |
 //! | 1701–1799 | EGM (`ERR_UDPUC_COMM`) |
 //! | 1801–1899 | system: configuration data and text tables (`ERR_CFG_NOTFND`, …) |
+//! | 1901–1999 | several tasks: synchronisation and the RAPID message queue (`ERR_RMQ_FULL`, …) |
 //!
 //! Numbers never change once published; new constants take the next free number of their
 //! group.
@@ -81,6 +82,15 @@ errs! {
     ERR_UNKPROC = 1112, "Unknown procedure";
     ERR_ARGNOTVAR = 1113, "Argument is not a variable";
     ERR_ARGNOTPER = 1114, "Argument is not a persistent";
+    ERR_LOADED = 1150, "Program module already loaded";
+    ERR_SYNTAX = 1151, "Syntax error in the loaded program module";
+    ERR_LINKREF = 1152, "Unresolved references in the loaded program module";
+    ERR_LOADNO_INUSE = 1153, "Load session already in use";
+    ERR_LOADNO_NOUSE = 1154, "Load session not in use";
+    ERR_UNLOAD = 1155, "Program module cannot be unloaded";
+    ERR_NOTSAVED = 1156, "Program module changed since it was loaded";
+    ERR_MODULE = 1157, "Program module not found";
+    ERR_PRGMEMFULL = 1158, "Program memory full";
     ERR_ALRDYCNT = 1201, "Interrupt variable already connected";
     ERR_CNTNOTVAR = 1202, "CONNECT target is not a variable";
     ERR_INOMAX = 1203, "No more interrupt numbers available";
@@ -99,6 +109,9 @@ errs! {
     ERR_WHLSEARCH = 1403, "No search hit";
     ERR_PATH_STOP = 1404, "Path stopped";
     ERR_SIGSUPSEARCH = 1405, "Search signal already set at the start";
+    ERR_PATHDIST = 1440, "Too far from the interrupted path to restart";
+    ERR_SPEED_REFRESH_LIM = 1441, "Speed override out of limits";
+    ERR_FRAME = 1442, "The positions do not define a frame";
     ERR_NO_ALIASIO_DEF = 1501, "Signal variable is not connected to a signal";
     ERR_ALIASIO_DEF = 1502, "Signal is not defined";
     ERR_ALIASIO_TYPE = 1503, "Signal has the wrong type";
@@ -117,6 +130,7 @@ errs! {
     ERR_FILEEXIST = 1608, "File already exists";
     ERR_RANYBIN_CHK = 1609, "Check sum error in binary data";
     ERR_RCVDATA = 1610, "Data read is not a number";
+    ERR_IOERROR = 1611, "Input/output error while loading or saving a program module";
     // The socket errors beyond the first two take 1650 on (1603-1649: files).
     ERR_SOCK_ADDR_INVALID = 1650, "Socket address not valid (not an IPv4 address of a reachable host)";
     ERR_SOCK_ADDR_INUSE = 1651, "Socket address and port already in use";
@@ -136,6 +150,16 @@ errs! {
     ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
     ERR_SYMBOL_TYPE = 1808, "Data object of another type";
     ERR_INVDIM = 1809, "Data object of other dimensions";
+    ERR_WAITSYNCTASK = 1901, "WaitSyncTask time-out (not every task arrived)";
+    ERR_RMQ_DIM = 1902, "RAPID message data of other dimensions";
+    ERR_RMQ_FULL = 1903, "RAPID message queue of the receiver is full";
+    ERR_RMQ_INVALID = 1904, "RAPID message slot not valid";
+    ERR_RMQ_INVMSG = 1905, "RAPID message not valid";
+    ERR_RMQ_MSGSIZE = 1906, "RAPID message larger than the receiver's queue allows";
+    ERR_RMQ_NAME = 1907, "RAPID message queue name not found";
+    ERR_RMQ_NOMSG = 1908, "No message in the RAPID message queue";
+    ERR_RMQ_TIMEOUT = 1909, "No RAPID message arrived in time";
+    ERR_RMQ_VALUE = 1910, "RAPID message data of another type";
 }
 
 /// The constant with this (case-insensitive) name.

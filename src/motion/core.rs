@@ -9,8 +9,9 @@ use crate::robot::{JointsDeg, Robot, ToolData};
 
 use super::correction::PathCorrection;
 use super::event::{InstrRef, MotionError, MotionEvent, Severity};
-use super::executor::Executor;
+use super::executor::{Executor, PathOp, PathOpError};
 use super::external_guidance::ExternalGuidance;
+use super::planner::PlanCheckpoint;
 use super::planner::Planner;
 use super::settings::{CoreConfig, MotionSettings};
 use super::state::{MotionState, Setpoint};
@@ -32,6 +33,8 @@ pub enum EnqueueError {
 pub struct MotionCore {
     planner: Planner,
     exec: Executor,
+    /// The planning state of the path `StorePath` put aside.
+    stored_plan: Option<PlanCheckpoint>,
 }
 
 impl MotionCore {
@@ -42,12 +45,17 @@ impl MotionCore {
         MotionCore {
             planner: Planner::new(robot.clone(), config.period, start),
             exec: Executor::new(robot, &config, start),
+            stored_plan: None,
         }
     }
 
     /// Join a planner and an executor (see [`MotionCore::into_parts`]).
     pub fn from_parts(planner: Planner, exec: Executor) -> MotionCore {
-        MotionCore { planner, exec }
+        MotionCore {
+            planner,
+            exec,
+            stored_plan: None,
+        }
     }
 
     /// Split into the planning half and the cycle half.
@@ -155,6 +163,16 @@ impl MotionCore {
         self.planner.set_start(self.exec.setpoint().joints);
     }
 
+    /// Hold, resume, store, restore or clear the path (see `motion::executor::PathOp`); the
+    /// planner follows: after a store it plans from where the robot is, after a restore from
+    /// the stored path's end.
+    pub fn path_op(&mut self, op: PathOp) -> Result<(), PathOpError> {
+        self.exec.path_op(op)?;
+        let here = self.exec.setpoint().joints;
+        path_op_plan(&mut self.planner, &mut self.stored_plan, op, here);
+        Ok(())
+    }
+
     /// Leave the halted state after a motion error; planning restarts where the robot is.
     pub fn recover(&mut self) {
         self.exec.recover();
@@ -195,5 +213,26 @@ impl MotionCore {
         correction: Option<Box<dyn PathCorrection>>,
     ) -> Option<Box<dyn PathCorrection>> {
         self.exec.set_path_correction(correction)
+    }
+}
+
+/// The planner's side of a path operation the executor accepted, `here` being where the
+/// robot is (shared by the virtual core and the real-time shell, whose planner lives apart
+/// from its executor).
+pub fn path_op_plan(
+    planner: &mut Planner,
+    stored: &mut Option<PlanCheckpoint>,
+    op: PathOp,
+    here: crate::robot::JointsDeg,
+) {
+    match op {
+        PathOp::Store => *stored = Some(planner.store(here)),
+        PathOp::Restore => {
+            if let Some(cp) = stored.take() {
+                planner.restore(cp);
+            }
+        }
+        PathOp::Clear => planner.set_start(here),
+        PathOp::Hold { .. } | PathOp::Release | PathOp::Speed(_) => {}
     }
 }

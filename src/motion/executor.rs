@@ -12,6 +12,8 @@
 //! executor is halted once the robot is at rest. The brake is a joint movement, so the TCP
 //! may leave the programmed path by the little it travels while braking.
 
+mod path_hold;
+
 use std::collections::VecDeque;
 use std::time::Duration;
 
@@ -28,6 +30,13 @@ use super::segment::{Sample, Segment};
 use super::settings::CoreConfig;
 use super::state::{CoreMode, MotionState, Setpoint};
 use crate::time::RobotTime;
+
+pub use path_hold::{PathOp, PathOpError};
+
+/// How far from the interrupted path a restart may begin.
+pub mod path_hold_limits {
+    pub use super::path_hold::{QUICK_RAMP_SHARE, RAMP_SHARE, REGAIN_MAX_DEG, REGAIN_MAX_MM};
+}
 
 /// Most position events a corner path carries over from the segment it leaves (more are
 /// fired when the corner starts).
@@ -104,6 +113,16 @@ pub struct Executor {
     /// Joint speeds of the last cycle, deg/s.
     velocity: JointsDeg,
     braking: Option<Braking>,
+    /// The rate the path is played at (`executor/path_hold.rs`).
+    rate: path_hold::PathRate,
+    /// Interpolation between samples while the rate is not 1.
+    scaled: Option<path_hold::Scaled>,
+    /// The path put aside by `StorePath`.
+    stored: Option<path_hold::StoredPath>,
+    /// An empty queue with room for every segment, for the new path of `StorePath`.
+    spare_queue: VecDeque<Segment>,
+    /// After `RestoPath`: the place on the path where the robot held (for the regain check).
+    held_at: Option<JointsDeg>,
     /// Position events of the segment a corner path left, still to fire in the corner:
     /// (instruction, key, share of the corner path where it fires).
     carry: Vec<(InstrRef, u64, f64)>,
@@ -151,6 +170,11 @@ impl Executor {
             track: None,
             velocity: [0.0; 6],
             braking: None,
+            rate: path_hold::PathRate::default(),
+            scaled: None,
+            stored: None,
+            spare_queue: VecDeque::with_capacity(capacity),
+            held_at: None,
             carry: Vec::with_capacity(CARRY_CAPACITY),
             robot,
         }
@@ -208,7 +232,7 @@ impl Executor {
         MotionState {
             setpoint: self.setpoint,
             pending: self.queue.len(),
-            moving: self.active.is_some() || self.braking.is_some(),
+            moving: self.active.is_some() || self.braking.is_some() || self.scaled_pending(),
             last_done: self.last_done,
             halted: self.halted,
             mode: if self.external.is_some() {
@@ -217,6 +241,7 @@ impl Executor {
                 CoreMode::Planned
             },
             events_total: self.events.total(),
+            held: self.rate.hold,
         }
     }
 
@@ -235,6 +260,7 @@ impl Executor {
     /// is at rest. External guidance is left to stop itself.
     pub fn stop(&mut self) {
         self.clear();
+        self.reset_scaling();
         self.track = None;
         if self.external.is_none() && !self.halted && self.braking.is_none() {
             let instr = self.setpoint.instr;
@@ -368,10 +394,20 @@ impl Executor {
                 }
             }
         } else {
-            match self.next_sample(now) {
-                Some(out) => {
+            let next = if self.scaling() {
+                self.scaled_sample(now)
+            } else {
+                self.next_sample(now)
+            };
+            match next {
+                Some(mut out) => {
+                    // Held on the path at rest: the robot stands still.
+                    out.at_stop_point |= self.held_at_rest();
                     fresh = out.first;
-                    let mut instr = self.active_instr().or(self.last_done);
+                    let mut instr = self
+                        .active_instr()
+                        .or(self.pending_done())
+                        .or(self.last_done);
                     match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
                         Err(error) => {
@@ -585,6 +621,7 @@ impl Executor {
     fn fault(&mut self, instr: Option<InstrRef>, error: MotionError) {
         self.track = None;
         self.clear();
+        self.reset_scaling();
         if let Some(e) = self.external.take() {
             self.retired = Some(e.guidance);
         }

@@ -55,9 +55,15 @@ pub fn effective_tcp_speed(v_tcp: f64, s: &MotionSettings, model: &RobotModel) -
     v.min(model.vmax_tcp)
 }
 
-/// Cartesian acceleration of the TCP (mm/s²) after `AccSet`.
+/// Cartesian acceleration of the TCP (mm/s²) after `AccSet`, `PathAccLim` and `WorldAccLim`.
 pub fn tcp_accel(model: &RobotModel, s: &MotionSettings) -> f64 {
-    model.vmax_tcp / TCP_RAMP_S * accel_factor(s)
+    let mut a = model.vmax_tcp / TCP_RAMP_S * accel_factor(s);
+    for lim in [s.path_acc_lim, s.world_acc_lim].into_iter().flatten() {
+        if lim.is_finite() && lim > 0.0 {
+            a = a.min(lim);
+        }
+    }
+    a
 }
 
 /// Reorientation acceleration (deg/s²) after `AccSet`: the slowest wrist axis's acceleration.

@@ -72,6 +72,13 @@ pub struct Planner {
     pending_name: Option<&'static str>,
 }
 
+/// The planning state put aside by [`Planner::store`].
+#[derive(Debug)]
+pub struct PlanCheckpoint {
+    start: JointsDeg,
+    prev: Option<Prev>,
+}
+
 /// The measured shape of a move: TCP path length (mm) and reorientation (deg).
 #[derive(Clone, Copy, Debug)]
 struct Extent {
@@ -120,6 +127,25 @@ impl Planner {
     pub fn set_start(&mut self, q: JointsDeg) {
         self.start = q;
         self.forget_prev();
+    }
+
+    /// Put the planning state aside (`StorePath`): the start and the last fly-by point.
+    /// Planning goes on from `q`.
+    pub fn store(&mut self, q: JointsDeg) -> PlanCheckpoint {
+        let cp = PlanCheckpoint {
+            start: self.start,
+            prev: self.prev.take(),
+        };
+        self.start = q;
+        cp
+    }
+
+    /// Take the planning state back (`RestoPath`): moves queued from now on follow the stored
+    /// path's last move.
+    pub fn restore(&mut self, cp: PlanCheckpoint) {
+        self.forget_prev();
+        self.start = cp.start;
+        self.prev = cp.prev;
     }
 
     fn forget_prev(&mut self) {

@@ -112,4 +112,11 @@ pub struct MotionSettings {
     pub accset: AccSet,
     /// `SingArea`.
     pub singarea: SingArea,
+    /// `PathAccLim`: the TCP acceleration along linear and circular paths is at most this
+    /// (mm/s²). The profile accelerates and decelerates alike, so the smaller of `\AccMax`
+    /// and `\DecelMax` applies to both.
+    pub path_acc_lim: Option<f64>,
+    /// `WorldAccLim \On`: the TCP acceleration in world coordinates is at most this (mm/s²);
+    /// applied to linear and circular paths like `path_acc_lim`.
+    pub world_acc_lim: Option<f64>,
 }

@@ -67,6 +67,9 @@ pub struct MotionState {
     pub mode: CoreMode,
     /// Events recorded so far (taken, pending or dropped).
     pub events_total: u64,
+    /// The path is held (`StopMove`): the robot decelerates to rest on it and stays there
+    /// until it is released.
+    pub held: bool,
 }
 
 impl MotionState {

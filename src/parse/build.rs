@@ -7,7 +7,7 @@ use super::error::{ParseError, ParseErrorKind};
 use super::grammar::{Pair, RapidParser, Rule};
 use super::recover::{self, Region};
 use super::{MAX_ERRORS_PER_FILE, MAX_NESTING, ParseOptions, marks, prescan};
-use crate::ast::{self, Ident};
+use crate::ast::{self, EcoString, Ident};
 use crate::diag::Diagnostics;
 use crate::source::{SourceId, Span, Spanned};
 
@@ -34,6 +34,8 @@ pub(crate) struct Builder<'t, 'd> {
     stopped: bool,
     /// Items of the lists being built (see `build/literal.rs`), reused across the file.
     scratch: Vec<ast::Expr>,
+    /// Pack literal aggregates ([`ParseOptions::pack_literal_aggregates`]).
+    pub(crate) pack: bool,
 }
 
 /// Parse and build one file (see [`super::parse_file`]).
@@ -45,6 +47,7 @@ pub(crate) fn parse(
 ) -> ast::File {
     let whole = Span::new(file, 0, text.len());
     let mut b = Builder::new(file, text, text, diags);
+    b.pack = options.pack_literal_aggregates;
     let empty = ast::File {
         modules: Vec::new(),
         span: whole,
@@ -99,6 +102,7 @@ impl<'t, 'd> Builder<'t, 'd> {
             errors: 0,
             stopped: false,
             scratch: Vec::new(),
+            pack: true,
         }
     }
 }
@@ -131,7 +135,7 @@ impl<'t> Builder<'t, '_> {
 
     /// An identifier from an `ident` (or `<ID>`) pair.
     pub(crate) fn ident(&self, p: &Pair<'_>) -> Ident {
-        Spanned::new(self.text_of(p).to_string(), self.span(p))
+        Spanned::new(EcoString::from(self.text_of(p)), self.span(p))
     }
 
     /// Report an error (up to [`MAX_ERRORS_PER_FILE`] per file).

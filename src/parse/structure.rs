@@ -169,7 +169,7 @@ impl<'a> Names<'a> {
             Entry::Occupied(first) => c.push(ParseErrorKind::DuplicateName {
                 span: name.span,
                 first: *first.get(),
-                name: name.node.clone(),
+                name: name.node.to_string(),
                 scope: scope.describe(),
             }),
             Entry::Vacant(v) => {
@@ -399,7 +399,12 @@ impl Checker<'_> {
                 self.expr(lhs);
                 self.expr(rhs);
             }
-            ExprKind::Num(_) | ExprKind::Str(_) | ExprKind::Bool(_) | ExprKind::Name(_) => {}
+            // (A packed aggregate holds literals only: no placeholder.)
+            ExprKind::Num(_)
+            | ExprKind::Str(_)
+            | ExprKind::Bool(_)
+            | ExprKind::Name(_)
+            | ExprKind::PackedAggregate(_) => {}
         }
     }
 }

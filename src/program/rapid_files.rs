@@ -34,6 +34,16 @@ pub enum LoadError {
         /// Its size.
         size: u64,
     },
+    /// The file is not text: it holds NUL bytes (a module encrypted for a RobotWare add-in,
+    /// a binary file, or UTF-16 text).
+    #[error(
+        "{}: not a RAPID text file (it holds NUL bytes: an encrypted or binary module, or UTF-16 text, which rapidvc cannot read)",
+        path.display()
+    )]
+    NotText {
+        /// The file.
+        path: PathBuf,
+    },
     /// Reading failed.
     #[error("{}: {source}", path.display())]
     Io {
@@ -118,6 +128,13 @@ pub fn load_file(map: &mut SourceMap, path: &Path) -> Result<SourceId, LoadError
         });
     }
     let bytes = std::fs::read(path).map_err(err)?;
+    // Text never holds NUL; without this an encrypted module reads as Latin-1 garbage and
+    // fails with a confusing syntax error at its first byte.
+    if bytes.contains(&0) {
+        return Err(LoadError::NotText {
+            path: path.to_path_buf(),
+        });
+    }
     let text = decode_bytes(&bytes);
     Ok(map.add(path.display().to_string(), text))
 }
@@ -125,6 +142,19 @@ pub fn load_file(map: &mut SourceMap, path: &Path) -> Result<SourceId, LoadError
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn binary_files_are_not_read_as_text() {
+        let dir = std::env::temp_dir().join(format!("rapidvc-bin-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let f = dir.join("enc.sys");
+        std::fs::write(&f, [0xfe_u8, 0xd0, 0x05, 0x00, 0x00, 0x01]).expect("write");
+        let mut map = SourceMap::new();
+        let e = load_file(&mut map, &f).expect_err("binary");
+        assert!(matches!(e, LoadError::NotText { .. }));
+        assert!(e.to_string().contains("not a RAPID text file"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn walks_directories_sorted_and_filtered() {

@@ -164,7 +164,7 @@ impl Checker<'_> {
             Callee::Native(n) => self.native_view(n),
         };
 
-        let callee_name = name.node.clone();
+        let callee_name = name.node.to_string();
         let mut out: Vec<Option<Arg>> = vec![None; params.len()];
         let mut next_req = 0usize;
         let mut ok = true;
@@ -192,7 +192,7 @@ impl Checker<'_> {
                         self.err(
                             K::UnknownNamed {
                                 callee: callee_name.clone(),
-                                name: pn.node.clone(),
+                                name: pn.node.to_string(),
                             },
                             pn.span,
                         );
@@ -298,7 +298,7 @@ impl Checker<'_> {
             self.err(
                 K::UnknownOptional {
                     callee: callee.to_string(),
-                    name: pn.node.clone(),
+                    name: pn.node.to_string(),
                     is_required,
                 },
                 pn.span,
@@ -381,7 +381,7 @@ impl Checker<'_> {
                 {
                     self.err(
                         K::UnknownSignal {
-                            name: id.node.clone(),
+                            name: id.node.to_string(),
                             ty: self.ty_name(t),
                         },
                         e.span,

@@ -19,7 +19,7 @@ impl<'a> Checker<'a> {
             None => {
                 self.err(
                     K::UnknownType {
-                        name: name.node.clone(),
+                        name: name.node.to_string(),
                     },
                     name.span,
                 );
@@ -48,11 +48,11 @@ impl<'a> Checker<'a> {
                     }
                     let kind = match self.type_spans.get(&name.folded()) {
                         Some(first) => K::Duplicate {
-                            name: name.node.clone(),
+                            name: name.node.to_string(),
                             first: *first,
                         },
                         None => K::PredefinedRedeclared {
-                            name: name.node.clone(),
+                            name: name.node.to_string(),
                         },
                     };
                     self.err(kind, name.span);
@@ -87,7 +87,7 @@ impl<'a> Checker<'a> {
             } else {
                 self.err(
                     K::UnknownType {
-                        name: a.base.node.clone(),
+                        name: a.base.node.to_string(),
                     },
                     a.base.span,
                 );
@@ -123,7 +123,7 @@ impl<'a> Checker<'a> {
                 };
                 let dims = self.const_dims(&f.dims);
                 fields.push(Field {
-                    name: f.name.node.clone(),
+                    name: f.name.node.to_string(),
                     ty: Ty {
                         base,
                         rank: f.dims.len() as u8,
@@ -342,7 +342,7 @@ impl<'a> Checker<'a> {
             if g_stdlib && !stdlib && !d.local {
                 self.err(
                     K::PredefinedRedeclared {
-                        name: d.name.node.clone(),
+                        name: d.name.node.to_string(),
                     },
                     d.name.span,
                 );
@@ -353,7 +353,7 @@ impl<'a> Checker<'a> {
                     let first = self.ty_name(g.ty);
                     self.err(
                         K::PersMismatch {
-                            name: d.name.node.clone(),
+                            name: d.name.node.to_string(),
                             first,
                             this: self.ty_name(ty),
                         },
@@ -367,7 +367,7 @@ impl<'a> Checker<'a> {
             let first = g.span;
             self.err(
                 K::Duplicate {
-                    name: d.name.node.clone(),
+                    name: d.name.node.to_string(),
                     first,
                 },
                 d.name.span,
@@ -375,7 +375,7 @@ impl<'a> Checker<'a> {
             return;
         }
         let gid = self.add_global(Global {
-            name: d.name.node.clone(),
+            name: d.name.node.to_string(),
             origin: GlobalOrigin::Module(mid),
             local: d.local,
             task: d.task,
@@ -411,7 +411,7 @@ impl<'a> Checker<'a> {
                     let first = o.head_span;
                     self.err(
                         K::Duplicate {
-                            name: r.name.node.clone(),
+                            name: r.name.node.to_string(),
                             first,
                         },
                         r.name.span,
@@ -473,7 +473,7 @@ impl<'a> Checker<'a> {
                 if seen.contains(&pk) {
                     self.err(
                         K::Duplicate {
-                            name: p.name.node.clone(),
+                            name: p.name.node.to_string(),
                             first: p.span,
                         },
                         p.name.span,
@@ -489,7 +489,7 @@ impl<'a> Checker<'a> {
                     ParamSlot::Ref(rslots - 1)
                 };
                 params.push(ParamInfo {
-                    name: p.name.node.clone(),
+                    name: p.name.node.to_string(),
                     ty: Ty {
                         base,
                         rank: p.open_dims.min(3),
@@ -513,7 +513,7 @@ impl<'a> Checker<'a> {
         let rid = RoutineId(self.routines.len() as u32);
         self.routine_syms.entry(key).or_default().push(rid);
         self.routines.push(Routine {
-            name: r.name.node.clone(),
+            name: r.name.node.to_string(),
             module: mid,
             local: r.local,
             kind,

@@ -130,6 +130,7 @@ impl Checker<'_> {
                 }
             },
             AK::Call { name, args } => self.func_call(name, args, span),
+            AK::PackedAggregate(p) => self.rvalue(&p.unpack(span), expect, dims),
             AK::Aggregate(items) => match expect {
                 Some(ty) => self.aggregate(items, ty, dims, span),
                 None => {
@@ -245,7 +246,7 @@ impl Checker<'_> {
             None
         };
         // An aggregate operand takes its type from the other operand (`p = [1, 2, 3]`).
-        let is_agg = |e: &ast::Expr| matches!(e.kind, AK::Aggregate(_));
+        let is_agg = |e: &ast::Expr| matches!(e.kind, AK::Aggregate(_) | AK::PackedAggregate(_));
         let (l, r) = if is_agg(rhs) && !is_agg(lhs) {
             let l = self.rvalue(lhs, hint, None);
             let want = l.as_ref().map(|x| x.1);
@@ -508,9 +509,9 @@ impl Checker<'_> {
                     None => ok = false,
                 }
             } else {
-                let inner = match &item.kind {
-                    AK::Aggregate(inner) => inner,
-                    _ => {
+                let inner = match item.aggregate_items() {
+                    Some(inner) => inner,
+                    None => {
                         self.err(
                             K::TypeMismatch {
                                 context: "a row of a multi-dimensional array".into(),
@@ -524,7 +525,7 @@ impl Checker<'_> {
                     }
                 };
                 if self
-                    .array_items(inner, ty, depth + 1, dims, sizes, flat, item.span)
+                    .array_items(&inner, ty, depth + 1, dims, sizes, flat, item.span)
                     .is_none()
                 {
                     ok = false;
@@ -560,7 +561,7 @@ impl Checker<'_> {
                 RoutineKind::Proc => {
                     self.err(
                         K::WrongRoutineKind {
-                            name: name.node.clone(),
+                            name: name.node.to_string(),
                             is: "a procedure",
                             needed: "a function",
                         },
@@ -571,7 +572,7 @@ impl Checker<'_> {
                 RoutineKind::Trap => {
                     self.err(
                         K::WrongRoutineKind {
-                            name: name.node.clone(),
+                            name: name.node.to_string(),
                             is: "a trap",
                             needed: "a function",
                         },
@@ -596,7 +597,7 @@ impl Checker<'_> {
             let Some(ret) = self.native_ret(nid) else {
                 self.err(
                     K::WrongRoutineKind {
-                        name: name.node.clone(),
+                        name: name.node.to_string(),
                         is: "an instruction",
                         needed: "a function",
                     },
@@ -615,7 +616,7 @@ impl Checker<'_> {
         }
         self.err(
             K::Unsupported {
-                name: name.node.clone(),
+                name: name.node.to_string(),
                 what: "function",
             },
             name.span,

@@ -107,6 +107,18 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
     ),
     ("egm_minmax", &[("min", "num"), ("max", "num")]),
     ("listitem", &[("image", "string"), ("text", "string")]),
+    // Several tasks: a task list entry and a RAPID message's header.
+    ("tasks", &[("taskname", "string")]),
+    (
+        "rmqheader",
+        &[
+            ("datatype", "string"),
+            ("ndim", "num"),
+            ("dim1", "num"),
+            ("dim2", "num"),
+            ("dim3", "num"),
+        ],
+    ),
 ];
 
 /// Non-value and semi-value types, modelled as records with hidden components.
@@ -116,6 +128,8 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
         &[("running", "bool"), ("started", "dnum"), ("acc", "dnum")],
     ),
     ("egmident", &[("id", "num")]),
+    // A correction generator (`CorrCon`): its number, 0 when not connected.
+    ("corrdescr", &[("id", "num")]),
     ("mecunit", &[("name", "string")]),
     ("signaldi", &[("name", "string")]),
     ("signaldo", &[("name", "string")]),
@@ -142,7 +156,28 @@ const OPAQUE: &[(&str, &[(&str, &str)])] = &[
             ("intno", "num"),
         ],
     ),
+    // Several tasks: a synchronisation point (named by its variable), an RMQ client, and a
+    // RAPID message (header, data as literal text, sender, \UserDef, valid).
+    ("syncident", &[("id", "num")]),
+    ("rmqslot", &[("slot", "num")]),
+    (
+        "rmqmessage",
+        &[
+            ("datatype", "string"),
+            ("ndim", "num"),
+            ("dim1", "num"),
+            ("dim2", "num"),
+            ("dim3", "num"),
+            ("data", "string"),
+            ("sender", "num"),
+            ("userdef", "num"),
+            ("valid", "bool"),
+        ],
+    ),
     ("dir", &[("id", "num")]),
+    // A load session of `StartLoad`/`WaitLoad` and a block of `GetNextSym`/`SetDataVal`.
+    ("loadsession", &[("id", "num")]),
+    ("datapos", &[("id", "num")]),
     (
         "trapdata",
         &[

@@ -114,7 +114,7 @@ impl Checker<'_> {
                     dims: None,
                     kind: Obj::ForVar,
                     whole: true,
-                    name: id.node.clone(),
+                    name: id.node.to_string(),
                 });
             }
             match rcx.scope.get(&key) {
@@ -157,7 +157,7 @@ impl Checker<'_> {
                         dims: (!dims.is_empty()).then(|| dims.clone()),
                         kind: if *constant { Obj::Const } else { Obj::Var },
                         whole: true,
-                        name: id.node.clone(),
+                        name: id.node.to_string(),
                     });
                 }
                 None => {}
@@ -214,7 +214,7 @@ impl Checker<'_> {
             .suggest(&key, self.cur_module, &params, &self.globals);
         self.err(
             K::Undeclared {
-                name: id.node.clone(),
+                name: id.node.to_string(),
                 suggestion,
             },
             id.span,
@@ -303,7 +303,7 @@ impl Checker<'_> {
             self.err(
                 K::UnknownComponent {
                     ty: self.ty_name(ty),
-                    field: field.node.clone(),
+                    field: field.node.to_string(),
                 },
                 field.span,
             );
@@ -350,7 +350,7 @@ impl Checker<'_> {
         if found.is_none() {
             self.err(
                 K::NotOptional {
-                    name: id.node.clone(),
+                    name: id.node.to_string(),
                 },
                 id.span,
             );

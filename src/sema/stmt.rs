@@ -72,7 +72,7 @@ impl<'a> Checker<'a> {
                 if labels.insert(id.folded(), n).is_some() {
                     self.err(
                         K::Duplicate {
-                            name: id.node.clone(),
+                            name: id.node.to_string(),
                             first: id.span,
                         },
                         id.span,
@@ -132,14 +132,14 @@ impl<'a> Checker<'a> {
             if rcx.returns == 0 {
                 self.err(
                     K::FuncWithoutReturn {
-                        name: r.name.node.clone(),
+                        name: r.name.node.to_string(),
                     },
                     r.head_span,
                 );
             } else if !terminates(&r.body) {
                 self.err(
                     K::FuncEndReachable {
-                        name: r.name.node.clone(),
+                        name: r.name.node.to_string(),
                     },
                     r.span.end_point(),
                 );
@@ -228,7 +228,7 @@ impl<'a> Checker<'a> {
             if rcx.scope.contains_key(&key) {
                 self.err(
                     K::Duplicate {
-                        name: d.name.node.clone(),
+                        name: d.name.node.to_string(),
                         first: d.name.span,
                     },
                     d.name.span,
@@ -248,7 +248,7 @@ impl<'a> Checker<'a> {
                 },
             );
             out.push(LocalDecl {
-                name: d.name.node.clone(),
+                name: d.name.node.to_string(),
                 ty,
                 dims,
                 init,
@@ -420,7 +420,7 @@ impl<'a> Checker<'a> {
                     None => {
                         self.err(
                             K::BadLabel {
-                                name: id.node.clone(),
+                                name: id.node.to_string(),
                                 exists: false,
                             },
                             span,
@@ -433,7 +433,7 @@ impl<'a> Checker<'a> {
                     Some(_) => {
                         self.err(
                             K::BadLabel {
-                                name: id.node.clone(),
+                                name: id.node.to_string(),
                                 exists: true,
                             },
                             span,
@@ -512,7 +512,7 @@ impl<'a> Checker<'a> {
                     matches!(&target.kind, AK::Name(id) if id.is("ERRNO") || id.is("INTNO"));
                 if readonly {
                     let name = match &target.kind {
-                        AK::Name(id) => id.node.clone(),
+                        AK::Name(id) => id.node.to_string(),
                         _ => String::new(),
                     };
                     self.err(
@@ -597,7 +597,7 @@ impl<'a> Checker<'a> {
             if let Some(is) = is {
                 self.err(
                     K::WrongRoutineKind {
-                        name: name.node.clone(),
+                        name: name.node.to_string(),
                         is,
                         needed: "a procedure",
                     },
@@ -615,7 +615,7 @@ impl<'a> Checker<'a> {
             if self.natives[nid.0 as usize].is_func() {
                 self.err(
                     K::WrongRoutineKind {
-                        name: name.node.clone(),
+                        name: name.node.to_string(),
                         is: "a function",
                         needed: "an instruction",
                     },
@@ -639,7 +639,7 @@ impl<'a> Checker<'a> {
         }
         self.err(
             K::Unsupported {
-                name: name.node.clone(),
+                name: name.node.to_string(),
                 what: "instruction",
             },
             name.span,
@@ -653,8 +653,12 @@ impl<'a> Checker<'a> {
         for a in args {
             let (name, expr): (Option<String>, Option<&ast::Expr>) = match &a.kind {
                 ArgKind::Positional(e) => (None, Some(e)),
-                ArgKind::Named { name, value } => (Some(name.node.clone()), Some(value.as_ref())),
-                ArgKind::Optional { name, value } => (Some(name.node.clone()), value.as_deref()),
+                ArgKind::Named { name, value } => {
+                    (Some(name.node.to_string()), Some(value.as_ref()))
+                }
+                ArgKind::Optional { name, value } => {
+                    (Some(name.node.to_string()), value.as_deref())
+                }
                 ArgKind::Conditional { .. } | ArgKind::Placeholder(_) => {
                     self.err(
                         K::BadDecl {
@@ -723,7 +727,7 @@ impl<'a> Checker<'a> {
         let Some(rid) = self.lookup_routine(&key) else {
             self.err(
                 K::Undeclared {
-                    name: trap.node.clone(),
+                    name: trap.node.to_string(),
                     suggestion: None,
                 },
                 trap.span,
@@ -733,7 +737,7 @@ impl<'a> Checker<'a> {
         if self.routines[rid.0 as usize].kind != RoutineKind::Trap {
             self.err(
                 K::WrongRoutineKind {
-                    name: trap.node.clone(),
+                    name: trap.node.to_string(),
                     is: "not a trap",
                     needed: "a TRAP routine",
                 },
@@ -809,7 +813,7 @@ fn terminates(stmts: &[ast::Stmt]) -> bool {
 /// A place as written (`t.trans.x`, `a{…}`), for messages.
 fn place_text(e: &ast::Expr) -> String {
     match &e.kind {
-        AK::Name(id) => id.node.clone(),
+        AK::Name(id) => id.node.to_string(),
         AK::Component { base, field } => format!("{}.{}", place_text(base), field.node),
         AK::Index { base, .. } => format!("{}{{…}}", place_text(base)),
         _ => "…".to_string(),

@@ -93,7 +93,8 @@ pub(super) fn register(r: &mut Registry) {
         "FUNC bool StrOrder(string Str1, string Str2, string Order)",
         |cx| Ok(Value::Bool(str_order(cx.str(0)?, cx.str(1)?, cx.str(2)?))),
     );
-    // One task: nothing runs between the test and the set.
+    // Nothing runs between the test and the set: only one task runs at a time, and a task
+    // hands the processor over only between statements or while it waits.
     r.add("FUNC bool TestAndSet(INOUT bool Object)", |cx| {
         let taken = cx.bool(0)?;
         if !taken {

@@ -24,11 +24,11 @@ use crate::ir::{GlobalOrigin, ParamSlot, Storage, Ty};
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
     r.add(
-        "PROC GetDataVal(string Object, INOUT anydata Value)",
+        r"PROC GetDataVal(string Object, \datapos Block, INOUT anydata Value)",
         get_data_val,
     );
     r.add(
-        "PROC SetDataVal(string Object, anydata Value)",
+        r"PROC SetDataVal(string Object, \datapos Block, anydata Value)",
         set_data_val,
     );
     r.add(
@@ -36,12 +36,12 @@ pub(super) fn register(r: &mut Registry) {
         arg_name,
     );
     r.add("FUNC bool IsPers(INOUT anydata DatObj)", |cx| {
-        let pers = matches!(what_is(cx, 0), Some(Origin::Global(g)) if cx.p.globals[g].storage == Storage::Pers);
+        let pers = matches!(what_is(cx, 0), Some(Origin::Global(g)) if cx.it.prog.globals[g].storage == Storage::Pers);
         Ok(Value::Bool(pers))
     });
     r.add("FUNC bool IsVar(INOUT anydata DatObj)", |cx| {
         let var = match what_is(cx, 0) {
-            Some(Origin::Global(g)) => cx.p.globals[g].storage == Storage::Var,
+            Some(Origin::Global(g)) => cx.it.prog.globals[g].storage == Storage::Var,
             Some(Origin::Routine { .. }) => true,
             None => false,
         };
@@ -52,6 +52,10 @@ pub(super) fn register(r: &mut Registry) {
         type_name,
     );
 }
+
+/// The arguments `\Block` and `Value` of `GetDataVal`/`SetDataVal`.
+const BLOCK: usize = 1;
+const VALUE: usize = 2;
 
 /// Where the data behind a reference argument is declared.
 enum Origin {
@@ -86,7 +90,7 @@ fn what_is(cx: &Ctx<'_>, i: usize) -> Option<Origin> {
 /// The declared type of value slot `slot` of `routine` (routine data, value parameters,
 /// `FOR` variables).
 fn slot_ty(cx: &Ctx<'_>, routine: crate::ir::RoutineId, slot: u32) -> Option<(Ty, String)> {
-    let r = cx.p.routines.get(routine.0 as usize)?;
+    let r = cx.it.prog.routines.get(routine.0 as usize)?;
     if let Some(l) = r.locals.iter().find(|l| l.slot == slot) {
         return Some((l.ty, l.name.clone()));
     }
@@ -102,12 +106,14 @@ fn ref_ty(cx: &Ctx<'_>, i: usize) -> Option<Ty> {
         return None;
     };
     let mut ty = match what_is(cx, i)? {
-        Origin::Global(g) => cx.p.globals.get(g)?.ty,
+        Origin::Global(g) => cx.it.prog.globals.get(g)?.ty,
         Origin::Routine { routine, slot } => slot_ty(cx, routine, slot)?.0,
     };
     for step in &place.path {
         ty = match step {
-            Step::Field(f) if ty.rank == 0 => cx.p.types.fields(ty.base)?.get(*f as usize)?.ty,
+            Step::Field(f) if ty.rank == 0 => {
+                cx.it.prog.types.fields(ty.base)?.get(*f as usize)?.ty
+            }
             Step::Elem(_) if ty.rank > 0 => ty.elem(),
             _ => return None,
         };
@@ -117,9 +123,19 @@ fn ref_ty(cx: &Ctx<'_>, i: usize) -> Option<Ty> {
 
 /// The data object called `name` as the calling routine sees it: its place, type and
 /// storage class.
-fn find_by_name(cx: &Ctx<'_>, name: &str) -> Option<(AbsPlace, Ty, Storage)> {
+pub(super) fn find_by_name(cx: &Ctx<'_>, name: &str) -> Option<(AbsPlace, Ty, Storage)> {
+    // `\Block` (from `GetNextSym`): the module data of that module, LOCAL ones included.
+    if cx.present(BLOCK)
+        && let Ok(Some([Value::Num(b)])) = cx.value(BLOCK).map(|v| v.fields())
+    {
+        let module = crate::ir::ModuleId((*b as u32).saturating_sub(1));
+        let found = cx.it.prog.globals.iter().enumerate().find(|(_, g)| {
+            g.name.eq_ignore_ascii_case(name) && g.origin == GlobalOrigin::Module(module)
+        });
+        return found.map(|(i, g)| (AbsPlace::global(i as u32), g.ty, g.storage));
+    }
     let frame = cx.it.frames.last()?;
-    let routine = cx.p.routines.get(frame.routine.0 as usize)?;
+    let routine = cx.it.prog.routines.get(frame.routine.0 as usize)?;
     if let Some(l) = routine
         .locals
         .iter()
@@ -132,7 +148,7 @@ fn find_by_name(cx: &Ctx<'_>, name: &str) -> Option<(AbsPlace, Ty, Storage)> {
         return Some((place, l.ty, Storage::Var));
     }
     let module = routine.module;
-    let found = cx.p.globals.iter().enumerate().find(|(_, g)| {
+    let found = cx.it.prog.globals.iter().enumerate().find(|(_, g)| {
         g.name.eq_ignore_ascii_case(name)
             && match g.origin {
                 GlobalOrigin::Module(m) => !g.local || m == module,
@@ -145,8 +161,8 @@ fn find_by_name(cx: &Ctx<'_>, name: &str) -> Option<(AbsPlace, Ty, Storage)> {
 /// Is module data `g` in a read-only (stdlib) module?
 fn read_only_module(cx: &Ctx<'_>, place: &AbsPlace) -> bool {
     match place.root {
-        AbsRoot::Global(g) => match cx.p.globals[g as usize].origin {
-            GlobalOrigin::Module(m) => cx.p.modules[m.0 as usize].stdlib,
+        AbsRoot::Global(g) => match cx.it.prog.globals[g as usize].origin {
+            GlobalOrigin::Module(m) => cx.it.prog.modules[m.0 as usize].stdlib,
             _ => true,
         },
         _ => false,
@@ -165,7 +181,7 @@ fn object(cx: &Ctx<'_>, target: Option<Ty>) -> Exec<(AbsPlace, Storage)> {
     if let Some(t) = target
         && t != ty
     {
-        let types = &cx.p.types;
+        let types = &cx.it.prog.types;
         let (kind, message) = if t.base == ty.base {
             (errnum::ERR_INVDIM, "has other dimensions than")
         } else {
@@ -184,24 +200,24 @@ fn object(cx: &Ctx<'_>, target: Option<Ty>) -> Exec<(AbsPlace, Storage)> {
 }
 
 fn get_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let (place, _) = object(cx, ref_ty(cx, 1))?;
+    let (place, _) = object(cx, ref_ty(cx, VALUE))?;
     let value = cx
         .it
         .abs_get(&place)
         .map_err(|e| cx.it.walk_err(e, cx.span))?
         .clone();
-    if !crate::interp::place::same_dims(cx.value(1)?, &value) {
+    if !crate::interp::place::same_dims(cx.value(VALUE)?, &value) {
         return Err(cx.error(
             errnum::ERR_INVDIM,
             format!("`{}` has other array sizes than the variable", cx.str(0)?),
         ));
     }
-    cx.set(1, value)?;
+    cx.set(VALUE, value)?;
     Ok(Value::Absent)
 }
 
 fn set_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let ty = match cx.args.get(1) {
+    let ty = match cx.args.get(VALUE) {
         Some(crate::ir::Arg::Value(e)) => value_ty(cx, e),
         _ => None,
     };
@@ -212,7 +228,7 @@ fn set_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
             format!("`{}` is read-only: SetDataVal cannot change it", cx.str(0)?),
         ));
     }
-    let value = cx.value(1)?.clone();
+    let value = cx.value(VALUE)?.clone();
     let old = cx
         .it
         .abs_get(&place)
@@ -236,7 +252,7 @@ fn value_ty(cx: &Ctx<'_>, e: &crate::ir::Expr) -> Option<Ty> {
         K::Dnum(_) => Some(Ty::DNUM),
         K::Bool(_) => Some(Ty::BOOL),
         K::Str(_) => Some(Ty::STRING),
-        K::Global(g) => cx.p.globals.get(*g as usize).map(|g| g.ty),
+        K::Global(g) => cx.it.prog.globals.get(*g as usize).map(|g| g.ty),
         K::Local(s) => {
             let frame = cx.it.frames.last()?;
             slot_ty(cx, frame.routine, *s).map(|t| t.0)
@@ -248,9 +264,9 @@ fn value_ty(cx: &Ctx<'_>, e: &crate::ir::Expr) -> Option<Ty> {
 fn arg_name(cx: &mut Ctx<'_>) -> Exec<Value> {
     let name = match cx.arg(0) {
         Some(NArg::Ref(place)) if place.path.is_empty() => match what_is(cx, 0) {
-            Some(Origin::Global(g)) => Ok(cx.p.globals[g].name.clone()),
+            Some(Origin::Global(g)) => Ok(cx.it.prog.globals[g].name.clone()),
             Some(Origin::Routine { routine, slot }) => {
-                let r = &cx.p.routines[routine.0 as usize];
+                let r = &cx.it.prog.routines[routine.0 as usize];
                 // An IN parameter holds a copy: the caller's data is not known here.
                 if let Some(p) = r.params.iter().find(|p| p.slot == ParamSlot::Value(slot)) {
                     return Err(in_param_unsupported(cx, &p.name));
@@ -295,15 +311,20 @@ fn in_param_unsupported(cx: &Ctx<'_>, param: &str) -> crate::interp::error::Unwi
     )
 }
 
-fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let ty = match cx.arg(0) {
-        Some(NArg::Ref(_)) => ref_ty(cx, 0),
-        _ => match cx.args.first() {
+/// The static type of argument `i` (a reference's, or an IN argument's as far as
+/// [`value_ty`] knows it), else `None`.
+pub(super) fn arg_type(cx: &Ctx<'_>, i: usize) -> Option<Ty> {
+    match cx.arg(i) {
+        Some(NArg::Ref(_)) => ref_ty(cx, i),
+        _ => match cx.args.get(i) {
             Some(crate::ir::Arg::Value(e)) => value_ty(cx, e),
             _ => None,
         },
-    };
-    let ty = match ty {
+    }
+}
+
+fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
+    let ty = match arg_type(cx, 0) {
         Some(t) => t,
         None => match cx.value(0)? {
             Value::Num(_) => Ty::NUM,
@@ -321,6 +342,6 @@ fn type_name(cx: &mut Ctx<'_>) -> Exec<Value> {
         },
     };
     // Arrays: the element type's name, as ABB's Type gives it.
-    let name = cx.p.types.name(ty.base).to_string();
+    let name = cx.it.prog.types.name(ty.base).to_string();
     cx.string(name)
 }

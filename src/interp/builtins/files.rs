@@ -228,7 +228,7 @@ fn path(cx: &mut Ctx<'_>, i: usize, errno: i32) -> Exec<PathBuf> {
     resolve(cx, &p, errno)
 }
 
-fn resolve(cx: &mut Ctx<'_>, p: &str, errno: i32) -> Exec<PathBuf> {
+pub(super) fn resolve(cx: &mut Ctx<'_>, p: &str, errno: i32) -> Exec<PathBuf> {
     match cx.it.files.resolve(p) {
         Ok((host, note)) => {
             if let Some(n) = note {

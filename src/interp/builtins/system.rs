@@ -63,10 +63,15 @@ pub(super) fn register(r: &mut Registry) {
     r.add(
         r"FUNC string GetTaskName(\VAR num TaskNo | VAR num MecTaskNo)",
         |cx| {
-            let task = with_system(cx, |s, _| s.info.task.clone())?;
-            for i in 0..2 {
+            // Among several tasks the scheduler knows the name and numbers; alone, the
+            // task is number 1 and moves its own robot.
+            let (task, numbers) = match cx.host().tasks() {
+                Some(t) => (t.task_name(), [t.task_number(), t.mec_task_number()]),
+                None => (with_system(cx, |s, _| s.info.task.clone())?, [1, 1]),
+            };
+            for (i, n) in numbers.into_iter().enumerate() {
                 if cx.present(i) {
-                    cx.set(i, Value::Num(1.0))?;
+                    cx.set(i, Value::Num(n as f32))?;
                 }
             }
             cx.string(task)
@@ -430,6 +435,32 @@ pub(crate) fn note_move_data(cx: &mut Ctx<'_>, tool: usize, wobj: usize) {
         if let Some(w) = wobj {
             s.info.active.set(SysDataKind::Wobj, &w);
         }
+    }
+}
+
+/// Make the persistent of argument `arg` the active data of `kind` (`GripLoad`).
+pub(crate) fn note_active(cx: &mut Ctx<'_>, kind: SysDataKind, arg: usize) {
+    let name = pers_arg(cx, arg).map(|g| cx.p.globals[g].name.clone());
+    if let (Some(n), Some(s)) = (name, cx.host().system()) {
+        s.info.active.set(kind, &n);
+    }
+}
+
+/// The value of the active data of `kind` (`CTool`, `CWObj`): the persistent of that name.
+pub(crate) fn active_value(cx: &mut Ctx<'_>, kind: SysDataKind) -> Exec<Value> {
+    let active = with_system(cx, |s, _| s.info.active.get(kind).to_string())?;
+    let type_name = match kind {
+        SysDataKind::Tool => "tooldata",
+        SysDataKind::Wobj => "wobjdata",
+        SysDataKind::Load => "loaddata",
+    };
+    let ty = cx.p.types.lookup(type_name).map(crate::ir::Ty::scalar);
+    match ty.and_then(|ty| find_pers(cx, &active, ty)) {
+        Some(g) => Ok(cx.it.globals[g].clone()),
+        None => Err(cx.error(
+            errnum::ERR_REFUNKDAT,
+            format!("the active {type_name} `{active}` is not a persistent of this program"),
+        )),
     }
 }
 

@@ -322,6 +322,7 @@ impl Interp {
             bp: self.bp as u32,
             at: st_span,
             handling: None,
+            retries: 0,
         });
         let x = if self.steps >= self.next_poll {
             match self.poll(&c.prog, st_span) {

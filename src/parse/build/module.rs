@@ -50,7 +50,7 @@ impl<'t> Builder<'t, '_> {
         if let Some(a) = attrs.last() {
             span = span.merge(a.span);
         }
-        let name = name.unwrap_or_else(|| Spanned::new(String::new(), opener.end_point()));
+        let name = name.unwrap_or_else(|| Spanned::new(Default::default(), opener.end_point()));
         ModuleUnderConstruction {
             module: Module {
                 name,

@@ -62,7 +62,7 @@ impl<'t> Builder<'t, '_> {
         let (_, pieces) = jobs::run(
             threads,
             runs,
-            |(a, b)| piece(file, text, marked, a, b),
+            |(a, b)| piece(file, text, marked, a, b, options.pack_literal_aggregates),
             || (),
         );
         let pieces = pieces
@@ -85,13 +85,21 @@ impl<'t> Builder<'t, '_> {
 /// Parse and build the items of `text[from..to]`, which must be whole module items only;
 /// `None` if anything in it is not. (`marked` is the text with the pre-pass marks: pest
 /// parses it, see `marks.rs`.)
-fn piece(file: SourceId, text: &str, marked: &str, from: usize, to: usize) -> Option<Piece> {
+fn piece(
+    file: SourceId,
+    text: &str,
+    marked: &str,
+    from: usize,
+    to: usize,
+    pack: bool,
+) -> Option<Piece> {
     let mut diags = Diagnostics::new();
     let mut b = Builder::new(file, text, marked, &mut diags);
+    b.pack = pack;
     let at = Span::new(file, from, from);
     let mut m = ModuleUnderConstruction {
         module: Module {
-            name: Spanned::new(String::new(), at),
+            name: Spanned::new(crate::ast::EcoString::new(), at),
             attrs: Vec::new(),
             items: Vec::new(),
             span: at,

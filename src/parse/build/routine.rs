@@ -146,7 +146,7 @@ impl Builder<'_, '_> {
                     span: self.span(&end),
                     head_span,
                     kind: &expected[3..],
-                    name: name.node.clone(),
+                    name: name.node.to_string(),
                     found: self.text_of(&end).to_string(),
                     expected,
                 });
@@ -226,7 +226,7 @@ impl Builder<'_, '_> {
                 _ => {}
             }
         }
-        let missing = || Spanned::new(String::new(), head_span.end_point());
+        let missing = || Spanned::new(Default::default(), head_span.end_point());
         let mut names = names.into_iter();
         let kind = match rule {
             Rule::proc_head => RoutineKind::Proc,
@@ -305,7 +305,7 @@ impl Builder<'_, '_> {
         }
         let (ty, name) = if ph.is_some() {
             let n = names.into_iter().next()?;
-            (Spanned::new(String::new(), n.span.start_point()), n)
+            (Spanned::new(Default::default(), n.span.start_point()), n)
         } else {
             let mut names = names.into_iter();
             (names.next()?, names.next()?)

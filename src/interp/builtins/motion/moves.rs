@@ -82,8 +82,22 @@ fn move_args(cx: &Ctx<'_>, l: Layout) -> Exec<MoveArgs> {
 /// Queue the move; at a stop point without `\Conc`, wait until the robot is there. Its tool
 /// and work object become the active ones (`GetSysData`).
 fn submit(cx: &mut Ctx<'_>, cmd: MotionCommand, l: Layout) -> Exec<Value> {
+    submit_corr(cx, cmd, l, None)
+}
+
+/// [`submit`], marking the move for the correction generators when argument `corr`
+/// (`\Corr`) is present.
+fn submit_corr(
+    cx: &mut Ctx<'_>,
+    cmd: MotionCommand,
+    l: Layout,
+    corr: Option<usize>,
+) -> Exec<Value> {
     let stop_point = cmd.args().zone.finep && !cx.present(CONC);
     let id = cx.host().motion_submit(cmd).map_err(|e| cx.host_err(e))?;
+    if corr.is_some_and(|i| cx.present(i)) {
+        crate::interp::builtins::path_recovery::mark_corr(cx, id)?;
+    }
     crate::interp::builtins::system::note_move_data(cx, l.tool(), l.wobj());
     if stop_point {
         wait_for(cx, MotionWait::Done(id))?;
@@ -121,8 +135,8 @@ pub(super) fn move_j(cx: &mut Ctx<'_>) -> Exec<Value> {
 }
 
 /// `MoveL [\Conc,] ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr] [\TLoad]`.
-/// `\Corr` is accepted: without a connected correction generator (rapidvc has none) it adds
-/// nothing.
+/// `\Corr`: the offset of the connected correction generators is added (`CorrWrite`);
+/// without one it adds nothing.
 pub(super) fn move_l(cx: &mut Ctx<'_>) -> Exec<Value> {
     let l = Layout {
         speed: 3,
@@ -133,7 +147,7 @@ pub(super) fn move_l(cx: &mut Ctx<'_>) -> Exec<Value> {
         target: data::robtarget(cx, cx.value(1)?)?,
         conf_check: cx.it.host.motion_modes().conf_l,
     });
-    submit(cx, cmd, l)
+    submit_corr(cx, cmd, l, Some(10))
 }
 
 /// `MoveC [\Conc,] CirPoint, ToPoint [\ID], Speed [\V]|[\T], Zone [\Z], Tool [\WObj] [\Corr]
@@ -149,5 +163,5 @@ pub(super) fn move_c(cx: &mut Ctx<'_>) -> Exec<Value> {
         to_point: data::robtarget(cx, cx.value(2)?)?,
         conf_check: cx.it.host.motion_modes().conf_l,
     });
-    submit(cx, cmd, l)
+    submit_corr(cx, cmd, l, Some(11))
 }

@@ -1,0 +1,457 @@
+//! `rapidvc run` of a system with several tasks, or booted from a backup folder: every task
+//! of SYS.cfg that has modules runs on the scheduler of `controller::tasks` (its rule, and
+//! what STATIC and SEMISTATIC tasks do in a run, are documented there and in
+//! `docs/tasks.md`). TP lines and events carry the task's name (`[T_LOG] text`) when more
+//! than one task runs.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use super::{RunArgs, egm_options, print_output, print_summary, render, socket_clock};
+use crate::cli::{answers, interrupt, progress_line};
+use crate::controller::ControllerHost;
+use crate::controller::tasks::{DEFAULT_SLICE, Scheduler, TaskSpec, TaskedHost, run_tasks};
+use crate::interp::tasks::SharedPers;
+use crate::interp::{Host, Interp, Outcome, VirtualHost};
+use crate::mass_storage::MassStorage;
+use crate::program::system::{LoadedSystem, load_system};
+use crate::source::SourceMap;
+
+/// True when the arguments ask for a system rather than one program: one backup folder,
+/// a task prefix (`T_ROB1=a.mod`), or a SYS.cfg (in `--config` or beside the files) that
+/// defines more than one task.
+pub fn wants_system(args: &RunArgs) -> bool {
+    use crate::program::system::{is_backup, split_task_prefix};
+    if let [one] = args.files.as_slice()
+        && is_backup(one)
+    {
+        return true;
+    }
+    if args.files.iter().any(|p| split_task_prefix(p).0.is_some()) {
+        return true;
+    }
+    let dir = crate::program::config_dir(args.config.as_deref(), &args.files);
+    let Some(sys) = dir.and_then(|d| crate::config::find_file(&d, "SYS.cfg")) else {
+        return false;
+    };
+    let mut sources = SourceMap::new();
+    let mut diags = crate::diag::Diagnostics::new();
+    crate::config::load_file(&sys, "SYS", &mut sources, &mut diags)
+        .map(|f| crate::config::sys::read(&f, &mut diags))
+        .is_some_and(|s| s.tasks.len() > 1)
+}
+
+/// What a task's thread reports when its program has ended.
+struct TaskEnd {
+    code: ExitCode,
+    /// The robot may finish its queued moves (the program ended normally).
+    drain: bool,
+    /// The motion task's EGM side, to finish after the run.
+    egm: Option<crate::controller::egm_controller::EgmController>,
+}
+
+/// Run the system (see the module docs).
+pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
+    let loaded = load_system(&args.files, args.config.as_deref());
+    render::diagnostics(&loaded.diags, &loaded.sources);
+    if !loaded.ok() {
+        return ExitCode::from(2);
+    }
+    if let Some(msg) = refuse(&args, &loaded) {
+        eprintln!("error: {msg}");
+        return ExitCode::from(2);
+    }
+    for idle in &loaded.idle {
+        eprintln!("note: task {} has no modules; it does not run", idle.name);
+    }
+    let uses_sockets = tasks_use_sockets(&loaded);
+    if uses_sockets || args.realtime || args.view.needs_realtime() {
+        eprintln!(
+            "error: several tasks run in virtual time only: --realtime and programs with sockets are not supported with several tasks yet"
+        );
+        return ExitCode::from(2);
+    }
+    let operator = match answers::read(args.answers.as_deref()) {
+        Ok(file) => answers::operator(file.as_ref(), None),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
+    let LoadedSystem {
+        sources,
+        tasks,
+        idle,
+        registry,
+        signals,
+        config,
+        home,
+        ..
+    } = loaded;
+    let sources = Arc::new(sources);
+    let labels = tasks.len() > 1;
+    let home = args.home.clone().or(home);
+    let storage = Arc::new(MassStorage::new(home));
+    let system = super::system_services(&args, &config, &sources);
+    // The motion task's controller (robot, traces, plots, EGM).
+    let motion = tasks.iter().position(|t| t.config.motion);
+    let mut controller = None;
+    let mut egm_log_written = false;
+    if let Some(m) = motion
+        && let Some(prog) = tasks.get(m).and_then(|t| t.program.clone())
+    {
+        let devices = egm_options::device_use(&prog);
+        match egm_options::check_devices(&args.egm, &devices) {
+            Ok(warnings) => warnings.iter().for_each(|w| eprintln!("warning: {w}")),
+            Err(msg) => {
+                eprintln!("error: {msg}");
+                return ExitCode::from(2);
+            }
+        }
+        let uses_egm = egm_options::uses_egm(&prog, &sources);
+        match super::start_controller(
+            &args,
+            &sources,
+            &config,
+            &signals,
+            uses_egm.then_some(&devices),
+            false,
+            None,
+        ) {
+            Ok(c) => {
+                egm_log_written = c.2;
+                controller = Some(c);
+            }
+            Err(msg) => {
+                eprintln!("error: {msg}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let halt = Arc::new(AtomicBool::new(false));
+    let specs: Vec<TaskSpec> = tasks
+        .iter()
+        .map(|t| TaskSpec {
+            config: t.config.clone(),
+            number: t.number as i32,
+        })
+        .collect();
+    let idle_specs: Vec<TaskSpec> = idle
+        .iter()
+        .map(|c| TaskSpec {
+            config: c.clone(),
+            number: config
+                .sys
+                .tasks
+                .iter()
+                .position(|t| t.name == c.name)
+                .map_or(0, |i| i as i32 + 1),
+        })
+        .collect();
+    let sched = Scheduler::new(
+        specs,
+        idle_specs,
+        Arc::clone(&halt),
+        Some(Arc::clone(&interrupted)),
+    );
+    let store = SharedPers::new();
+    let mut operator = Some(operator);
+    let mut bodies: Vec<Box<dyn FnOnce() -> TaskEnd + Send + '_>> = Vec::new();
+    for (i, task) in tasks.iter().enumerate() {
+        let Some(prog) = task.program.clone() else {
+            continue;
+        };
+        let mut services = system.clone();
+        services.info.task = task.config.name.clone();
+        let inner: Box<dyn Host + Send> = match (Some(i) == motion, controller.take()) {
+            (true, Some((ctl, egm, _, outside))) => Box::new(
+                ControllerHost::new(ctl)
+                    .with_egm(egm)
+                    .with_signals(Arc::clone(&signals))
+                    .with_system(services)
+                    .with_max_time(args.max_time)
+                    .with_outside_inputs(outside)
+                    .with_stop_request(Arc::clone(&halt))
+                    .with_lines(Arc::clone(&sources))
+                    .with_sink(print_output),
+            ),
+            (_, ctl) => {
+                controller = ctl;
+                Box::new(
+                    VirtualHost::new()
+                        .with_signals(Arc::clone(&signals))
+                        .with_system(services)
+                        .with_sink(print_output),
+                )
+            }
+        };
+        let host = TaskedHost::new(
+            Arc::clone(&sched),
+            bodies.len(),
+            inner,
+            labels,
+            Some(args.max_time),
+        );
+        // `Load`/`UnLoad` in this task rebuild this task's program.
+        let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
+        let registry = registry.clone();
+        let storage = Arc::clone(&storage);
+        let store = Arc::clone(&store);
+        let halt = Arc::clone(&halt);
+        let interrupted = Arc::clone(&interrupted);
+        let sources = Arc::clone(&sources);
+        let sched = Arc::clone(&sched);
+        let entry = task.config.entry.clone();
+        let name = task.config.name.clone();
+        let normal = task.config.kind == crate::config::sys::TaskType::Normal;
+        let cycles = if normal { args.cycles } else { 1 };
+        let operator = if Some(i) == motion || motion.is_none() && i == 0 {
+            operator.take()
+        } else {
+            None
+        };
+        let max_steps = args.max_steps;
+        let announce = args.trace.is_some() || args.plot.is_some();
+        bodies.push(Box::new(move || {
+            let mut it = Interp::new(prog, &registry, Box::new(host));
+            it.set_module_loader(Box::new(loader));
+            it.set_mass_storage(storage);
+            it.set_budget(max_steps);
+            it.set_stop_request(Arc::clone(&halt));
+            if let Some(op) = operator {
+                it.set_operator(op);
+            }
+            it.set_stack_budget(6 << 20);
+            let end = match it.init() {
+                Err(e) => {
+                    report_error(&name, &e, &sources);
+                    sched.halt_all(format!("task {name} failed"));
+                    TaskEnd {
+                        code: ExitCode::from(1),
+                        drain: false,
+                        egm: None,
+                    }
+                }
+                Ok(()) => {
+                    it.set_task_link(store, DEFAULT_SLICE);
+                    run_task(
+                        &mut it,
+                        &Which {
+                            name: &name,
+                            entry: &entry,
+                            cycles,
+                            labels,
+                            normal,
+                        },
+                        &sources,
+                        &sched,
+                        &interrupted,
+                    )
+                }
+            };
+            finish_task(&mut it, end, announce)
+        }));
+    }
+    let ends = run_tasks(&sched, bodies);
+    let mut code = ExitCode::SUCCESS;
+    for end in ends {
+        match end {
+            Some(e) => {
+                if e.code != ExitCode::SUCCESS {
+                    code = e.code;
+                }
+                if let Some(egm) = e.egm
+                    && let Err(msg) = egm_options::finish(egm, &args.egm, egm_log_written)
+                {
+                    eprintln!("error: {msg}");
+                    code = ExitCode::from(2);
+                }
+            }
+            None => {
+                eprintln!("error: a task's thread failed");
+                code = ExitCode::from(1);
+            }
+        }
+    }
+    if interrupted.load(Ordering::Relaxed) {
+        return ExitCode::from(interrupt::EXIT_INTERRUPTED);
+    }
+    code
+}
+
+fn tasks_use_sockets(loaded: &LoadedSystem) -> bool {
+    loaded
+        .tasks
+        .iter()
+        .filter_map(|t| t.program.as_deref())
+        .any(socket_clock::uses_sockets)
+}
+
+/// What a run of several tasks does not support yet (checked before anything runs).
+fn refuse(args: &RunArgs, loaded: &LoadedSystem) -> Option<String> {
+    if args.pers.is_some() {
+        return Some(
+            "--pers is not supported with several tasks yet (the task-global persistents are shared)"
+                .into(),
+        );
+    }
+    if args.view.wanted() {
+        return Some("--view is not supported with several tasks yet".into());
+    }
+    if args.entry != "main" {
+        return Some(
+            "--entry: with several tasks each task starts at its -Entry of SYS.cfg (main by default)"
+                .into(),
+        );
+    }
+    for t in &loaded.tasks {
+        let Some(prog) = &t.program else { continue };
+        if let Err(e) = Interp::entry_point(prog, &t.config.entry) {
+            return Some(format!(
+                "task {} (files {}): {}",
+                t.config.name,
+                t.files
+                    .iter()
+                    .map(|f: &PathBuf| f.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                e.message
+            ));
+        }
+    }
+    None
+}
+
+fn report_error(task: &str, e: &crate::interp::RuntimeError, sources: &SourceMap) {
+    let _ = std::io::stdout().flush();
+    progress_line::clear();
+    eprintln!("error in task {task}:");
+    render::runtime_error(e, sources);
+}
+
+/// Which task runs where.
+#[derive(Clone, Copy)]
+struct Which<'a> {
+    name: &'a str,
+    entry: &'a str,
+    /// How many times the entry routine runs.
+    cycles: u32,
+    /// Several tasks run: messages name the task.
+    labels: bool,
+    /// A NORMAL task (its EXIT or Stop stops the other tasks).
+    normal: bool,
+}
+
+/// Run a task's entry routine `cycles` times.
+fn run_task(
+    it: &mut Interp,
+    task: &Which<'_>,
+    sources: &SourceMap,
+    sched: &Scheduler,
+    interrupted: &AtomicBool,
+) -> TaskEnd {
+    let Which {
+        name,
+        entry,
+        cycles,
+        labels,
+        normal,
+    } = *task;
+    let who = if labels {
+        format!("task {name}: ")
+    } else {
+        String::new()
+    };
+    for _ in 0..cycles {
+        match it.run(entry) {
+            Ok(Outcome::Completed | Outcome::ExitCycle) => {}
+            Ok(Outcome::Exited) => {
+                eprintln!("{who}program ended by EXIT");
+                if normal {
+                    // The NORMAL tasks start and stop together.
+                    sched.halt_all(format!("EXIT in task {name}"));
+                }
+                return TaskEnd {
+                    code: ExitCode::SUCCESS,
+                    drain: true,
+                    egm: None,
+                };
+            }
+            Ok(Outcome::Stopped) => {
+                progress_line::clear();
+                let why = if sched.halted_because().is_some() {
+                    "stopped with the other tasks"
+                } else if interrupted.load(Ordering::Relaxed) {
+                    "stopped (interrupted by Ctrl-C)"
+                } else if sched.halt_flag().load(Ordering::Relaxed) {
+                    "stopped at the end of the run"
+                } else {
+                    if normal {
+                        sched.halt_all(format!("Stop in task {name}"));
+                    }
+                    "stopped (Stop)"
+                };
+                eprintln!("{who}program {why}");
+                return TaskEnd {
+                    code: ExitCode::SUCCESS,
+                    drain: false,
+                    egm: None,
+                };
+            }
+            Err(e) => {
+                report_error(name, &e, sources);
+                sched.halt_all(format!("task {name} failed"));
+                return TaskEnd {
+                    code: ExitCode::from(1),
+                    drain: false,
+                    egm: None,
+                };
+            }
+        }
+    }
+    TaskEnd {
+        code: ExitCode::SUCCESS,
+        drain: true,
+        egm: None,
+    }
+}
+
+/// After a task's program: an EGM run still active ends, the motion task's controller
+/// finishes its moves (when the program ended normally) and prints its summary.
+fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool) -> TaskEnd {
+    if let Some(egm_host) = it.host_mut().egm()
+        && let Err(e) = egm_host.egm_program_stopped()
+    {
+        progress_line::clear();
+        eprintln!("error: {e}");
+        end.code = ExitCode::from(1);
+    }
+    if let Some(w) = answers::unused_warning(it.operator())
+        && end.code == ExitCode::SUCCESS
+    {
+        eprintln!("warning: {w}");
+    }
+    if let Some(host) = it
+        .host_mut()
+        .as_any_mut()
+        .and_then(|a| a.downcast_mut::<ControllerHost>())
+    {
+        let moved = host.moves_submitted() > 0;
+        end.egm = host.take_egm();
+        match host.finish(end.drain) {
+            Ok(summary) => {
+                if moved || announce {
+                    print_summary(&summary);
+                }
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                end.code = ExitCode::from(2);
+            }
+        }
+    }
+    end
+}

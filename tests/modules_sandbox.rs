@@ -1,0 +1,143 @@
+//! Modules loaded and saved at run time stay inside the controller's mass storage: a program
+//! run with `--home DIR` tries to `Load`, `StartLoad`, `Save` and `UnLoad \Save` through
+//! `..`, absolute host paths and symbolic links that point out of HOME. Every attempt fails
+//! with `ERR_FILEACC` (a host path written after `HOME:` is a path inside HOME, not found),
+//! no module from outside joins the program, and the directory outside HOME is exactly as
+//! it was.
+
+use rapidvc_testkit::rapidvc;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Every file under `dir` with its content.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .expect("read dir")
+        .flatten()
+        .map(|e| (e.path(), std::fs::read(e.path()).unwrap_or_default()))
+        .collect()
+}
+
+const OUTSIDE_MODULE: &str = "MODULE stolen\n  PROC stolen_run()\n  ENDPROC\nENDMODULE\n";
+
+fn program(outside: &Path) -> String {
+    let abs = outside.join("stolen.mod");
+    let abs = abs.display();
+    let dir = outside.display();
+    let attacks: Vec<(&str, String)> = vec![
+        (
+            "load_dotdot",
+            r#"Load "HOME:/../outside/stolen.mod";"#.into(),
+        ),
+        (
+            "load_dotdot_file",
+            r#"Load "HOME:" \File:="../outside/stolen.mod";"#.into(),
+        ),
+        ("load_absolute", format!(r#"Load "{abs}";"#)),
+        (
+            "load_root_absolute",
+            format!(r#"Load "HOME:" \File:="{abs}";"#),
+        ),
+        ("load_link_file", r#"Load "HOME:/link.mod";"#.into()),
+        ("load_link_dir", r#"Load "HOME:/out/stolen.mod";"#.into()),
+        (
+            "startload_link_dir",
+            r#"StartLoad "HOME:/out/stolen.mod", ls;"#.into(),
+        ),
+        (
+            "save_dotdot",
+            r#"Save "mine" \FilePath:="HOME:/../outside/mine.mod";"#.into(),
+        ),
+        (
+            "save_link_dir",
+            r#"Save "mine" \FilePath:="HOME:/out/mine.mod";"#.into(),
+        ),
+        (
+            "save_link_file",
+            r#"Save "mine" \FilePath:="HOME:/link.mod";"#.into(),
+        ),
+        (
+            "save_absolute",
+            format!(r#"Save "mine" \FilePath:="{dir}/mine.mod";"#),
+        ),
+        (
+            "unload_save_link",
+            r#"UnLoad \Save, "HOME:/out/stolen.mod";"#.into(),
+        ),
+    ];
+    let mut m = String::from("MODULE attack\n  VAR loadsession ls;\n  VAR iodev f;\n\n");
+    for (label, body) in &attacks {
+        m.push_str(&format!(
+            "  PROC {label}()\n    {body}\n    TPWrite \"{label}: NO ERROR\";\n  ERROR\n    \
+             IF ERRNO = ERR_FILEACC TPWrite \"{label}: ERR_FILEACC\";\n    \
+             IF ERRNO = ERR_FILNOTFND TPWrite \"{label}: ERR_FILNOTFND\";\n    \
+             IF ERRNO <> ERR_FILEACC AND ERRNO <> ERR_FILNOTFND TPWrite \"{label}: other \" \\Num:=ERRNO;\n    \
+             RETURN;\n  ENDPROC\n\n"
+        ));
+    }
+    m.push_str("  PROC main()\n");
+    // A module of its own in HOME, loaded the ordinary way, to be saved by the attacks.
+    m.push_str(
+        "    Open \"HOME:/mine.mod\", f \\Write;\n    Write f, \"MODULE mine\";\n    \
+         Write f, \"ENDMODULE\";\n    Close f;\n    Load \"HOME:/mine.mod\";\n",
+    );
+    for (label, _) in &attacks {
+        m.push_str(&format!("    {label};\n"));
+    }
+    m.push_str(
+        "    IF ModExist(\"stolen\") TPWrite \"stolen loaded\";\n    TPWrite \"done\";\n  \
+         ENDPROC\nENDMODULE\n",
+    );
+    m
+}
+
+#[cfg(unix)]
+#[test]
+fn no_module_comes_from_or_goes_out_of_home() {
+    let root = std::env::temp_dir().join(format!("rapidvc-modsandbox-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    let (home, outside, prog_dir) = (root.join("home"), root.join("outside"), root.join("prog"));
+    for d in [&home, &outside, &prog_dir] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    std::fs::write(outside.join("stolen.mod"), OUTSIDE_MODULE).unwrap();
+    std::os::unix::fs::symlink(outside.join("stolen.mod"), home.join("link.mod")).unwrap();
+    std::os::unix::fs::symlink(&outside, home.join("out")).unwrap();
+    let before = snapshot(&outside);
+    let prog = prog_dir.join("attack.mod");
+    std::fs::write(&prog, program(&outside)).unwrap();
+
+    let out = rapidvc!()
+        .arg("run")
+        .arg("--home")
+        .arg(&home)
+        .arg(&prog)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run rapidvc");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.ends_with("done\n"), "{stdout}\n{stderr}");
+    for bad in ["NO ERROR", "other", "stolen loaded"] {
+        assert!(!stdout.contains(bad), "{stdout}");
+    }
+    // An absolute host path after `HOME:` names a file inside HOME (which does not exist).
+    assert!(
+        stdout.contains("load_root_absolute: ERR_FILNOTFND"),
+        "{stdout}"
+    );
+    let refused = stdout.lines().filter(|l| l.ends_with(": ERR_FILEACC"));
+    assert_eq!(refused.count(), 11, "{stdout}");
+    assert_eq!(snapshot(&outside), before);
+    assert_eq!(
+        std::fs::read_to_string(home.join("mine.mod")).unwrap(),
+        "MODULE mine\nENDMODULE\n"
+    );
+    assert!(
+        std::fs::symlink_metadata(home.join("link.mod"))
+            .unwrap()
+            .is_symlink()
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}

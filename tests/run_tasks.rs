@@ -1,0 +1,442 @@
+//! Several RAPID tasks in `rapidvc run`: booting the backup folder `tests/tasks/cell` (three
+//! tasks: the motion task T_ROB1, the STATIC logger T_LOG writing HOME:/cell.log, the
+//! SEMISTATIC T_CELL counting parts over the RAPID message queue), the determinism of the
+//! scheduler, and each inter-task instruction and its errors in small systems written here.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+
+use rapidvc_testkit::procs::{Ended, Proc};
+use rapidvc_testkit::rapidvc;
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+const LIMIT: Duration = Duration::from_secs(60);
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A fresh directory for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rapidvc-tasks-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        let target = to.join(e.file_name());
+        if e.file_type().unwrap().is_dir() {
+            copy_dir(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), target).unwrap();
+        }
+    }
+}
+
+/// `rapidvc ARGS…` in `dir`, to its end.
+fn run_in(dir: &Path, args: &[&str]) -> Ended {
+    let mut cmd = rapidvc!();
+    cmd.args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .env("COLUMNS", "1000");
+    let ended = Proc::spawn(cmd).wait(LIMIT);
+    assert!(!ended.timed_out, "rapidvc {args:?} did not end");
+    ended
+}
+
+/// Compare with a golden file (rewritten with `UPDATE_GOLDEN=1`).
+fn golden(path: &Path, actual: &str) {
+    if std::env::var_os("UPDATE_GOLDEN").is_some() {
+        std::fs::write(path, actual).unwrap();
+        return;
+    }
+    let expected = std::fs::read_to_string(path).unwrap();
+    assert_eq!(actual, expected, "differs from {}", path.display());
+}
+
+/// The cell boots from its backup folder and its three tasks interplay the same way every
+/// run: the TP lines (with their task names) and the logger's file are golden, and a
+/// second run gives the same bytes.
+#[test]
+fn the_cell_backup_runs_the_same_every_time() {
+    let mut outputs = Vec::new();
+    for k in 0..2 {
+        let dir = temp_dir(&format!("cell{k}"));
+        let cell = dir.join("cell");
+        copy_dir(&repo().join("tests/tasks/cell"), &cell);
+        let ended = run_in(&dir, &["run", "cell"]);
+        assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+        let log = std::fs::read_to_string(cell.join("HOME/cell.log")).unwrap();
+        // The STATIC logger is still waiting when the NORMAL task ends: it is stopped.
+        assert!(
+            ended
+                .stderr
+                .contains("task T_LOG: program stopped at the end of the run"),
+            "{}",
+            ended.stderr
+        );
+        outputs.push((ended.stdout, log));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    assert_eq!(outputs[0], outputs[1], "two runs differ");
+    golden(&repo().join("tests/tasks/cell.stdout"), &outputs[0].0);
+    golden(&repo().join("tests/tasks/cell.log"), &outputs[0].1);
+}
+
+/// A small system: SYS.cfg with the given CAB_TASKS lines, and one module per task, run
+/// with task prefixes.
+fn system(name: &str, tasks: &[(&str, &str, &str)]) -> (PathBuf, Vec<String>) {
+    let dir = temp_dir(name);
+    let mut sys = String::from("SYS:CFG_1.0:6:0::\n#\nCAB_TASKS:\n\n");
+    let mut args = vec!["run".to_string()];
+    for (task, attrs, module) in tasks {
+        sys.push_str(&format!("      -Name \"{task}\" {attrs}\n\n"));
+        let file = format!("{}.mod", task.to_ascii_lowercase());
+        std::fs::write(dir.join(&file), module).unwrap();
+        args.push(format!("{task}={file}"));
+    }
+    std::fs::write(dir.join("SYS.cfg"), sys).unwrap();
+    (dir, args)
+}
+
+fn run_system(name: &str, tasks: &[(&str, &str, &str)]) -> Ended {
+    let (dir, args) = system(name, tasks);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let ended = run_in(&dir, &args);
+    std::fs::remove_dir_all(&dir).unwrap();
+    ended
+}
+
+const MOTION: &str = "-Type \"NORMAL\" -MotionTask";
+
+#[test]
+fn a_move_outside_the_motion_task_is_refused() {
+    let ended = run_system(
+        "nomove",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PROC main()\n    WaitTime 1;\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_AUX",
+                "-Type \"NORMAL\"",
+                "MODULE b\n  PROC main()\n    MoveAbsJ [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, fine, tool0;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("task T_AUX is not a motion task"),
+        "{}",
+        ended.stderr
+    );
+    assert!(
+        ended.stderr.contains("error in task T_AUX"),
+        "{}",
+        ended.stderr
+    );
+}
+
+#[test]
+fn a_shared_pers_of_two_types_is_a_load_error() {
+    let ended = run_system(
+        "perstype",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num shared := 1;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS bool shared := TRUE;\n  TASK PERS bool own := TRUE;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(2), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("rapidvc::load::pers_type_mismatch")
+            && ended.stderr.contains("`shared`"),
+        "{}",
+        ended.stderr
+    );
+}
+
+#[test]
+fn task_pers_is_per_task_and_pers_is_shared() {
+    let ended = run_system(
+        "pers",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num shared := 1;\n  TASK PERS num own := 1;\n  PROC main()\n    shared := 5;\n    own := 5;\n    WaitTime 1;\n    TPWrite \"a: \" \\Num:=shared + own;\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS num shared := 1;\n  TASK PERS num own := 2;\n  PROC main()\n    WaitTime 0.5;\n    TPWrite \"b: \" \\Num:=shared + own;\n    shared := 7;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "[T_B] b: 7\n[T_ROB1] a: 12\n");
+}
+
+#[test]
+fn wait_sync_task_waits_for_every_task_and_times_out() {
+    let ended = run_system(
+        "sync",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s1;\n  VAR syncident s2;\n  VAR clock c;\n  PROC main()\n    ClkStart c;\n    WaitSyncTask s1, both;\n    TPWrite \"a synced at \" + NumToStr(ClkRead(c), 2);\n    WaitSyncTask s2, both \\TimeOut:=0.5;\n  ERROR\n    IF ERRNO = ERR_WAITSYNCTASK THEN\n      TPWrite \"a: time-out at \" + NumToStr(ClkRead(c), 2);\n      RETURN;\n    ENDIF\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s1;\n  PROC main()\n    WaitTime 2;\n    WaitSyncTask s1, both;\n    TPWrite \"b synced\";\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(
+        ended.stdout,
+        "[T_B] b synced\n[T_ROB1] a synced at 2.00\n[T_ROB1] a: time-out at 2.50\n"
+    );
+}
+
+#[test]
+fn get_task_name_gives_real_numbers() {
+    let ended = run_system(
+        "names",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "-Type \"SEMISTATIC\"",
+                "MODULE b\n  VAR num n;\n  VAR num m;\n  PROC main()\n    TPWrite GetTaskName(\\TaskNo:=n) + \" \" + NumToStr(n, 0);\n    TPWrite GetTaskName(\\MecTaskNo:=m) + \" \" + NumToStr(m, 0);\n    TPWrite ValToStr(TaskRunMec()) + \" \" + ValToStr(TaskRunRob()) + \" \" + NumToStr(TasksInSync(), 0);\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(
+        ended.stdout,
+        "[T_B] T_B 2\n[T_B] T_B 1\n[T_B] FALSE FALSE 0\n"
+    );
+}
+
+/// The RAPID message queue's errors, each handled in an ERROR handler.
+#[test]
+fn rmq_errors_are_raised() {
+    let sender = "MODULE a\n  VAR rmqslot b;\n  VAR rmqslot none;\n  VAR rmqmessage m;\n  VAR num x;\n  VAR string big := \"12345678901234567890123456789012345678901234567890\";\n  PROC main()\n    RMQFindSlot b, \"T_B\";\n    try 1;\n    try 2;\n    try 3;\n    try 4;\n    try 5;\n    try 6;\n    try 7;\n  ENDPROC\n  PROC try(num k)\n    TEST k\n    CASE 1: RMQFindSlot none, \"T_NOBODY\";\n    CASE 2: RMQGetMessage m;\n    CASE 3: RMQSendMessage b, big;\n    CASE 4: RMQSendMessage b, 1; RMQSendMessage b, 2; RMQSendMessage b, 3;\n    CASE 5: RMQReadWait m \\TimeOut:=0.1;\n    CASE 6: RMQSendMessage none, 1;\n    CASE 7: RMQSendWait b, 1, m, x \\TimeOut:=0.2;\n    ENDTEST\n    TPWrite \"case \" + NumToStr(k, 0) + \": ok\";\n  ERROR\n    TPWrite \"case \" + NumToStr(k, 0) + \": \" + NumToStr(ERRNO, 0);\n    RETURN;\n  ENDPROC\nENDMODULE\n";
+    let receiver = "MODULE b\n  VAR rmqmessage m;\n  VAR string s;\n  PROC main()\n    WaitTime 1;\n    RMQGetMessage m;\n    RMQGetMsgData m, s;\n  ERROR\n    TPWrite \"b: \" + NumToStr(ERRNO, 0);\n    RMQEmptyQueue;\n    RETURN;\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system(
+        "rmqerr",
+        &[
+            ("T_ROB1", MOTION, sender),
+            ("T_B", "-RmqMaxMsgSize 40 -RmqMaxNoOfMsg 2", receiver),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let num = |name: &str| {
+        rapidvc::ir::errnum::by_name(name)
+            .map(|e| e.num.to_string())
+            .unwrap()
+    };
+    let expected = format!(
+        "[T_ROB1] case 1: {}\n[T_ROB1] case 2: {}\n[T_ROB1] case 3: {}\n[T_ROB1] case 4: {}\n[T_ROB1] case 5: {}\n[T_ROB1] case 6: {}\n[T_ROB1] case 7: {}\n[T_B] b: {}\n",
+        num("ERR_RMQ_NAME"),
+        num("ERR_RMQ_NOMSG"),
+        num("ERR_RMQ_MSGSIZE"),
+        num("ERR_RMQ_FULL"),
+        num("ERR_RMQ_TIMEOUT"),
+        num("ERR_RMQ_INVALID"),
+        num("ERR_RMQ_FULL"),
+        num("ERR_RMQ_VALUE"),
+    );
+    assert_eq!(ended.stdout, expected, "{}", ended.stderr);
+}
+
+#[test]
+fn a_prefix_naming_no_task_is_refused() {
+    let ended = run_system(
+        "unknown",
+        &[(
+            "T_ROB1",
+            MOTION,
+            "MODULE a\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+        )],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let dir = temp_dir("unknown2");
+    std::fs::write(
+        dir.join("a.mod"),
+        "MODULE a\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let ended = run_in(&dir, &["run", "T_NOPE=a.mod"]);
+    assert_eq!(ended.code, Some(2), "{}", ended.stderr);
+    assert!(
+        ended
+            .stderr
+            .contains("names task `T_NOPE`, which SYS.cfg does not define (tasks: T_ROB1)"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_backup_without_task_folders_names_the_path() {
+    let dir = temp_dir("badbackup");
+    std::fs::create_dir_all(dir.join("sys/RAPID")).unwrap();
+    let ended = run_in(&dir, &["run", "sys"]);
+    assert_eq!(ended.code, Some(2), "{}", ended.stderr);
+    assert!(
+        ended
+            .stderr
+            .contains("RAPID: a backup's RAPID folder holds one TASK<n> folder"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every module of the cell checks with `rapidvc check` (every inter-task name is known),
+/// task by task and as the backup folder; a PERS of two types is found by the check too.
+#[test]
+fn the_cell_modules_check() {
+    let ended = run_in(&repo(), &["check", "tests/tasks/cell"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("checked 4 files: 0 errors"),
+        "{}",
+        ended.stderr
+    );
+    let (dir, _) = system(
+        "checkpers",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num p := 1;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS string p := \"x\";\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    let ended = run_in(&dir, &["check", "T_ROB1=t_rob1.mod", "T_B=t_b.mod"]);
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("pers_type_mismatch"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    for task in ["TASK1", "TASK2", "TASK3"] {
+        let dir = repo().join("tests/tasks/cell/RAPID").join(task);
+        let ended = run_in(&repo(), &["check", dir.to_str().unwrap()]);
+        assert_eq!(
+            ended.code,
+            Some(0),
+            "{task}: {}{}",
+            ended.stdout,
+            ended.stderr
+        );
+    }
+}
+
+/// A task that never waits hands the processor over every 1000 statements: the other task
+/// sees the shared count it has reached by then, and the busy task's loop is not finished.
+#[test]
+fn a_busy_task_shares_the_processor_every_1000_statements() {
+    let ended = run_system(
+        "slice",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num count := 0;\n  PROC main()\n    FOR i FROM 1 TO 5000 DO\n      count := count + 1;\n    ENDFOR\n    TPWrite \"a: \" \\Num:=count;\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS num count := 0;\n  PROC main()\n    TPWrite \"b first sees \" \\Num:=count;\n    WHILE count < 5000 DO\n      WaitTime 0.001;\n    ENDWHILE\n    TPWrite \"b: \" \\Num:=count;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let lines: Vec<&str> = ended.stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{}", ended.stdout);
+    // The slice ends at the 1000th step (the FOR statement and its body's statements count),
+    // which is the same point of the loop on every run.
+    assert_eq!(lines[0], "[T_B] b first sees 998");
+    assert_eq!(lines[1], "[T_ROB1] a: 5000");
+    assert_eq!(lines[2], "[T_B] b: 5000");
+}
+
+/// An unhandled error in one task stops the others; `EXIT` in a NORMAL task too.
+#[test]
+fn an_error_or_exit_in_one_task_stops_the_others() {
+    let waiting = "MODULE a\n  PROC main()\n    TPWrite \"a waits\";\n    WaitTime 100;\n    TPWrite \"a never gets here\";\n  ENDPROC\nENDMODULE\n";
+    let failing = "MODULE b\n  VAR num zero := 0;\n  PROC main()\n    WaitTime 1;\n    TPWrite \"b: \" \\Num:=1 / zero;\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("fail", &[("T_ROB1", MOTION, waiting), ("T_B", "", failing)]);
+    assert_eq!(ended.code, Some(1), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "[T_ROB1] a waits\n");
+    assert!(
+        ended.stderr.contains("error in task T_B"),
+        "{}",
+        ended.stderr
+    );
+    assert!(ended.stderr.contains("ERR_DIVZERO"), "{}", ended.stderr);
+    assert!(
+        ended
+            .stderr
+            .contains("task T_ROB1: program stopped with the other tasks"),
+        "{}",
+        ended.stderr
+    );
+    let exiting = "MODULE b\n  PROC main()\n    WaitTime 1;\n    EXIT;\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("exit", &[("T_ROB1", MOTION, waiting), ("T_B", "", exiting)]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "[T_ROB1] a waits\n");
+    assert!(
+        ended.stderr.contains("task T_B: program ended by EXIT"),
+        "{}",
+        ended.stderr
+    );
+}
+
+/// Arrays travel with their sizes (`rmqheader`), a receiver of other sizes gets
+/// `ERR_RMQ_DIM`, and `WaitSyncTask \\InPos` also waits for the robot to stand in position.
+#[test]
+fn rmq_arrays_and_wait_sync_in_position() {
+    let a = "MODULE a\n  VAR rmqslot b;\n  VAR num arr{3} := [1, 2, 3];\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQFindSlot b, \"T_B\";\n    RMQSendMessage b, arr;\n    RMQSendMessage b, arr;\n    MoveAbsJ [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, z10, tool0;\n    WaitSyncTask \\InPos, s, both;\n    TPWrite \"a in pos\";\n  ENDPROC\nENDMODULE\n";
+    let b = "MODULE b\n  VAR rmqmessage m;\n  VAR num got{3};\n  VAR num two{2};\n  VAR rmqheader h;\n  PERS tasks both{2} := [[\"T_ROB1\"],[\"T_B\"]];\n  VAR syncident s;\n  PROC main()\n    RMQReadWait m;\n    RMQGetMsgHeader m \\Header:=h;\n    RMQGetMsgData m, got;\n    TPWrite \"b got \" + ValToStr(got{3}) + \" \" + h.datatype + \" ndim \" + ValToStr(h.ndim) + \" dim1 \" + ValToStr(h.dim1);\n    RMQReadWait m;\n    RMQGetMsgData m, two;\n  ERROR\n    TPWrite \"b: \" \\Num:=ERRNO;\n    WaitSyncTask s, both;\n    TPWrite \"b synced\";\n  ENDPROC\nENDMODULE\n";
+    let ended = run_system("arrays", &[("T_ROB1", MOTION, a), ("T_B", "", b)]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    let dim = rapidvc::ir::errnum::ERR_RMQ_DIM;
+    assert_eq!(
+        ended.stdout,
+        format!(
+            "[T_B] b got 3 num ndim 1 dim1 3\n[T_B] b: {dim}\n[T_B] b synced\n[T_ROB1] a in pos\n"
+        )
+    );
+}
