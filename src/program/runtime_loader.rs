@@ -64,7 +64,7 @@ impl RuntimeLoader {
                 .map(|d| d.as_secs() as f64);
             for (k, am) in file.modules.iter().enumerate() {
                 user.push(UserModule {
-                    name: am.name.node.clone(),
+                    name: am.name.node.to_string(),
                     // A file of several modules is one entry (its first module's name
                     // stands for it; the others are found by `module` below).
                     file: if k == 0 {
@@ -163,7 +163,7 @@ impl ModuleLoader for RuntimeLoader {
             });
         }
         self.user.push(UserModule {
-            name,
+            name: name.to_string(),
             file,
             text: Arc::from(module.text),
             path: Some(module.path.to_string()),
