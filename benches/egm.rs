@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 
 use criterion::Criterion;
 use prost::Message;
+use rapidvc::controller::egm_controller::registry_config;
 use rapidvc::egm::convert::{EncodeOptions, ReferenceLimits, decode_reference, fill_robot};
 use rapidvc::egm::latency::LatencyHistogram;
 use rapidvc::egm::proto::EgmRobot;
@@ -19,7 +20,7 @@ use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig};
 use rapidvc::egm::servo::{EgmServo, ServoInput, ServoParams};
 use rapidvc::egm::{
     DriverContext, DriverOptions, EgmConfig, EgmDriver, EgmMode, EgmRegistry, EgmSession,
-    EgmSource, ExternalAxes, Joints, Pose, RapidData, RegistryConfig, RobotFeedback,
+    EgmSource, ExternalAxes, Joints, Pose, RapidData, RobotFeedback,
 };
 use rapidvc::robot::Robot;
 use rapidvc::signals::SignalTable;
@@ -237,7 +238,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
         .into_iter()
         .collect();
     let devices = DeviceTable::new(None, &overrides).unwrap();
-    let mut reg = EgmRegistry::new(RegistryConfig::new(Default::default(), devices));
+    let mut reg = EgmRegistry::new(registry_config(&Default::default(), &devices));
     let id = reg.get_id("egmID1").unwrap();
     if pattern.is_some() {
         let setup = SetupUc {
@@ -302,7 +303,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
         drops: Default::default(),
     };
     let start = [0.0, 10.0, 10.0, 0.0, 40.0, 0.0];
-    let source = EgmSource::open(&plan.source).unwrap();
+    let source = EgmSource::new(&plan.source);
     let driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &start).unwrap();
     (driver, start)
 }

@@ -6,16 +6,18 @@
 //! * [`convert`]: proto ↔ domain, with every validation rule of a receiving controller.
 //! * [`session`]: the controller side as a sans-IO state machine (`handle_datagram`,
 //!   `poll_transmit`, `poll_timeout`), in the style of quinn-proto.
-//! * the UDP transport beneath the session is [`crate::wire::udp`]: a thin `std::net::UdpSocket`
-//!   shell that makes no protocol decisions.
+//! * no socket: the controller's cycle owns the UDP transports (`wire::udp`, a thin
+//!   `std::net::UdpSocket` shell that makes no protocol decisions), drains them into the
+//!   machines and sends what they produce ([`DatagramMachine`]).
 //! * [`sensor`]: the built-in sensor (patterns, path correction), sans-IO as well.
 //! * [`servo`]: the EGM control law the motion core calls each tick.
 //! * [`geometry`], [`path_correction`]: pure pose-mode geometry and path-correction math.
 //! * [`registry`]: the EGM identities of a task and their state machine — what every EGM
 //!   instruction checks and changes; it hands out plans with every default applied.
 //! * [`driver`]: one EGMRunJoint/EGMRunPose per tick ([`EgmDriver`]), position streams
-//!   ([`EgmStream`]) and the message side of path correction ([`CorrectionLink`]) over UdpUc,
-//!   the in-process built-in sensor or I/O signals.
+//!   ([`EgmStream`]) and the message side of path correction ([`CorrectionLink`]), sans-IO
+//!   state machines talking to an external UdpUc sensor through the controller's loop, to
+//!   the in-process built-in sensor, or reading I/O signals.
 //! * [`message_log`]: the `--egm-log` rows and their CSV writer.
 //! * [`event`], [`latency`]: event-log entries and latency statistics.
 //!
@@ -41,11 +43,13 @@ pub mod registry;
 pub mod sensor;
 pub mod servo;
 pub mod session;
+#[cfg(test)]
+pub(crate) mod test_support;
 pub mod types;
 
 pub use driver::{
-    CorrectionLink, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmSource, EgmStream, EgmTick,
-    StreamTick,
+    CorrectionLink, DatagramMachine, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmSource,
+    EgmStream, EgmTick, StreamTick,
 };
 pub use event::{EgmEvent, EventKind};
 pub use registry::{CorrState, EgmError, EgmId, EgmRegistry, EgmState, RegistryConfig};

@@ -1,4 +1,4 @@
-//! The controller-side EGM machinery end to end in virtual time stepped by hand: registry → plan → driver ticks, with the built-in sensor in process, signal sources, and real loopback sockets (a silent peer, the built-in sensor on a thread in lockstep).
+//! The controller-side EGM machinery end to end in virtual time stepped by hand: registry → plan → driver ticks, with the built-in sensor in process, signal sources, and real loopback sockets carried by the controller's `DeviceSocket` (a silent peer, the built-in sensor on a thread in lockstep).
 //!
 //! Every test ends by itself: loops are bounded in ticks and sockets have read time-outs.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
@@ -10,8 +10,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use prost::Message;
-use rapidvc::config::devices::{DeviceOverride, DeviceTable};
-use rapidvc::config::moc::MocConfig;
+use rapidvc::controller::egm_controller::DeviceSocket;
 use rapidvc::egm::message_log::{EgmLogWriter, LOG_COLUMNS, LogRow};
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::proto::egm_mci_state::MciStateType;
@@ -19,8 +18,9 @@ use rapidvc::egm::registry::{ActJoint, ActPose, RunArgs, SetupSignals, SetupUc, 
 use rapidvc::egm::sensor::{BuiltinSensor, SensorConfig, SensorStats};
 use rapidvc::egm::servo::{MinMax, ServoPhase, StopMode};
 use rapidvc::egm::{
-    CorrState, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmMode,
-    EgmRegistry, EgmSource, EgmState, EgmStream, EgmTick, Joints, RapidExecState, RegistryConfig,
+    CorrState, DatagramMachine, DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError,
+    EgmEvent, EgmMode, EgmRegistry, EgmSource, EgmState, EgmStream, EgmTick, Joints,
+    RapidExecState,
 };
 use rapidvc::robot::units::pose_from_pos_quat;
 use rapidvc::robot::{ConfData, LoadData, Robot, ToolData};
@@ -37,9 +37,7 @@ fn rt(d: Duration) -> RobotTime {
 }
 
 fn registry(overrides: &[String]) -> EgmRegistry {
-    let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();
-    let devices = DeviceTable::new(None, &overrides).unwrap();
-    EgmRegistry::new(RegistryConfig::new(MocConfig::default(), devices))
+    rapidvc_testkit::egm_pair::registry(overrides, false)
 }
 
 fn ctx(signals: Arc<SignalTable>) -> DriverContext {
@@ -53,7 +51,7 @@ fn ctx(signals: Arc<SignalTable>) -> DriverContext {
 
 /// A driver for `plan` started at time zero from `START`, with the plan's own source.
 fn start_at_zero(ctx: &DriverContext, plan: &rapidvc::egm::registry::RunPlan) -> EgmDriver {
-    let source = EgmSource::open(&plan.source).unwrap();
+    let source = EgmSource::new(&plan.source);
     EgmDriver::start(RobotTime::ZERO, ctx, plan, source, &START).unwrap()
 }
 
@@ -86,14 +84,29 @@ struct Finished {
 /// Ticks `driver` in virtual time from `now` until it finishes (at most `max` ticks),
 /// commanding what it asks; in lockstep it waits for each reply. Asserts the command never
 /// leaves the robot's axis ranges.
-fn drive(driver: &mut EgmDriver, mut now: Duration, max: usize, lockstep: bool) -> Finished {
+fn drive(driver: &mut EgmDriver, now: Duration, max: usize, lockstep: bool) -> Finished {
+    drive_over(&mut DeviceSocket::default(), driver, now, max, lockstep)
+}
+
+/// [`drive`] with the device's socket carried as the controller's cycle does: drained into
+/// the driver before each tick, what it produced sent after it, and in lockstep the wait for
+/// the reply.
+fn drive_over(
+    socket: &mut DeviceSocket,
+    driver: &mut EgmDriver,
+    mut now: Duration,
+    max: usize,
+    lockstep: bool,
+) -> Finished {
     let robot = Robot::default();
     let mut q = *driver.start_joints();
     let mut ticks = Vec::new();
     let mut events = Vec::new();
     let mut rows = Vec::new();
     for _ in 0..max {
+        socket.receive(rt(now), driver);
         let t = driver.tick(rt(now), &q);
+        socket.send(rt(now), driver);
         robot.check_limits(&t.joints_cmd).unwrap();
         q = t.joints_cmd;
         while let Some(e) = driver.poll_event() {
@@ -103,7 +116,7 @@ fn drive(driver: &mut EgmDriver, mut now: Duration, max: usize, lockstep: bool) 
             rows.push(r);
         }
         if lockstep && driver.awaiting_reply() {
-            driver.wait_reply(Duration::from_secs(2));
+            socket.wait_reply(rt(now), Duration::from_secs(2), driver);
             assert!(!driver.awaiting_reply());
         }
         let done = t.finished.clone();
@@ -145,7 +158,7 @@ mod builtin {
             .unwrap();
         assert_eq!(reg.state(id), (EgmState::Running, CorrState::Running));
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
         let t0 = Duration::from_secs(3);
         let mut driver = EgmDriver::start(rt(t0), &ctx, &plan, source, &START).unwrap();
         let run = drive(&mut driver, t0, 5000, false);
@@ -376,7 +389,7 @@ mod builtin {
             RobotTime::ZERO,
             &ctx,
             &plan,
-            EgmSource::open(&plan.source).unwrap(),
+            EgmSource::new(&plan.source),
             &jpos10,
         )
         .unwrap();
@@ -503,7 +516,7 @@ mod signals {
             .unwrap();
         assert_eq!(plan.sample_period, Duration::from_millis(16));
         let ctx = ctx(Arc::clone(&table));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
         let mut driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &start).unwrap();
         let run = drive(&mut driver, Duration::ZERO, 20_000, false);
         // Samples every 16 ms: one logged row per sample.
@@ -637,14 +650,19 @@ mod udp {
         let plan = reg.run_joint(id, &args, ALL_J).unwrap();
         assert!(plan.source.is_external());
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
         assert!(source.is_external());
+        let mut socket = DeviceSocket::open(&plan.source).unwrap();
         let mut driver = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         // Lockstep: the first tick sends and then waits for the reply.
         let t = driver.tick(rt(Duration::ZERO), &START);
+        socket.send(rt(Duration::ZERO), &mut driver);
         assert!(t.sent && driver.awaiting_reply());
-        assert!(driver.wait_reply(Duration::from_secs(2)));
-        let run = drive(&mut driver, TICK, 3000, true);
+        assert_eq!(
+            socket.wait_reply(rt(Duration::ZERO), Duration::from_secs(2), &mut driver),
+            Some(true)
+        );
+        let run = drive_over(&mut socket, &mut driver, TICK, 3000, true);
         let (stats, seen) = sensor.finish();
         assert_eq!(run.result, Ok(EgmEnd::Converged));
         let last = run.ticks.last().unwrap();
@@ -716,7 +734,8 @@ mod udp {
             .unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
         let mut driver = start_at_zero(&ctx, &plan);
-        let run = drive(&mut driver, Duration::ZERO, 1000, false);
+        let mut socket = DeviceSocket::open(&plan.source).unwrap();
+        let run = drive_over(&mut socket, &mut driver, Duration::ZERO, 1000, false);
         let err = run.result.unwrap_err();
         assert!(matches!(err, EgmError::CommTimeout { .. }), "{err}");
         assert_eq!(err.rapid_error(), Some("ERR_UDPUC_COMM"));
@@ -764,14 +783,17 @@ mod udp {
         let plan = reg.stream_start(id, Some(8.0)).unwrap();
         assert_eq!(reg.state(id), (EgmState::Running, CorrState::Stopped));
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
+        let mut socket = DeviceSocket::open(&plan.source).unwrap();
         let mut stream = EgmStream::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         // A MoveAbsJ-like ramp on J1, 20 ticks.
         let mut sent = 0;
         for k in 0..20u32 {
             let mut q = START;
             q[0] = f64::from(k) * 0.5;
+            socket.receive(rt(TICK * k), &mut stream);
             let t = stream.tick(rt(TICK * k), &q, RapidExecState::Running);
+            socket.send(rt(TICK * k), &mut stream);
             sent += usize::from(t.sent);
         }
         assert_eq!(sent, 10, "every 8 ms");
@@ -832,21 +854,14 @@ fn mode_mismatch_and_the_fifth_identity() {
 mod path_correction {
     use super::*;
     use rapidvc::egm::driver::{CorrectionInput, CorrectionLink};
-    use rapidvc::egm::path_correction::{PathCorrConfig, PathCorrector, SeamProfile, Tracker};
+    use rapidvc::egm::path_correction::{SeamProfile, Tracker};
     use rapidvc::egm::registry::{ActMove, SetupLtapp, TrackerKind};
     use rapidvc::robot::WobjData;
+    use rapidvc_testkit::egm_pair::corrections;
 
     /// A registry whose MOC.cfg defines the manual's Level 2 profile "pathCorr".
     fn registry_pathcorr(overrides: &[String]) -> EgmRegistry {
-        let text = "MOC:CFG_1.0:6:0::\n#\nEXT_MOTION_DATA:\n\n      -name \"pathCorr\" -ext_motion_level 2\n";
-        let mut sources = rapidvc::source::SourceMap::new();
-        let mut diags = rapidvc::diag::Diagnostics::new();
-        let id = sources.add("MOC.cfg".to_string(), text);
-        let file = rapidvc::config::cfg::parse(id, text, &mut diags).unwrap();
-        let moc = rapidvc::config::moc::read(&file, &mut diags);
-        let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();
-        let devices = DeviceTable::new(None, &overrides).unwrap();
-        EgmRegistry::new(RegistryConfig::new(moc, devices))
+        rapidvc_testkit::egm_pair::registry(overrides, true)
     }
 
     fn act_move(reg: &mut EgmRegistry, id: rapidvc::egm::EgmId) {
@@ -872,32 +887,14 @@ mod path_correction {
         let plan = reg.move_start(id, "EGMMoveL").unwrap();
         assert_eq!(reg.state(id), (EgmState::Running, CorrState::Running));
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
         let mut link = CorrectionLink::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
-        let mut corrector = PathCorrector::new(PathCorrConfig::aptr()).unwrap();
-        corrector.start(0.0, 0.0);
-        let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
-        let mut arrivals = Vec::new();
-        let mut offset = Default::default();
-        for k in 0..500u32 {
-            let now = TICK * k;
-            let input = CorrectionInput {
-                commanded: START,
-                tool: &tool,
-                wobj: &wobj,
-                tcp_s: f64::from(k) * 0.04,
-                look_ahead: 0.0,
-            };
-            let t = link.tick(rt(now), &input);
-            assert!(t.failed.is_none());
-            if let Some(c) = t.correction {
-                arrivals.push(now);
-                assert_eq!(c.pos, [0.0, 2.0, -1.0]);
-                corrector
-                    .measurement(now.as_secs_f64(), c.pos, c.age_s())
-                    .unwrap();
-            }
-            offset = corrector.step(now.as_secs_f64(), input.tcp_s);
+        // In process: no pair carries anything.
+        let (got, offset) =
+            corrections::<BuiltinSensor>(&mut link, None, (START, &t_fronius_cmt()), 500);
+        let arrivals: Vec<Duration> = got.iter().map(|(t, _)| t.since_start()).collect();
+        for (_, pos) in &got {
+            assert_eq!(*pos, [0.0, 2.0, -1.0]);
         }
         // The built-in sensor answers at once; the reply is used on the next tick.
         assert_eq!(arrivals[0], TICK);
@@ -938,7 +935,7 @@ mod path_correction {
         act_move(&mut reg, id);
         let plan = reg.move_start(id, "EGMMoveL").unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
         assert!(
             EgmDriver::start(
                 RobotTime::ZERO,
@@ -948,7 +945,7 @@ mod path_correction {
                     p.source = plan.source.clone();
                     p
                 },
-                EgmSource::open(&plan.source).unwrap(),
+                EgmSource::new(&plan.source),
                 &START
             )
             .is_err(),
@@ -1001,7 +998,8 @@ mod path_correction {
         act_move(&mut reg, id);
         let plan = reg.move_start(id, "EGMMoveC").unwrap();
         let ctx = ctx(Arc::new(SignalTable::with_builtins()));
-        let source = EgmSource::open(&plan.source).unwrap();
+        let source = EgmSource::new(&plan.source);
+        let mut socket = DeviceSocket::open(&plan.source).unwrap();
         let mut link = CorrectionLink::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
         let (tool, wobj) = (t_fronius_cmt(), WobjData::wobj0());
         let input = CorrectionInput {
@@ -1013,7 +1011,9 @@ mod path_correction {
         };
         let mut failed_at = None;
         for k in 0..300u32 {
+            socket.receive(rt(TICK * k), &mut link);
             let t = link.tick(rt(TICK * k), &input);
+            socket.send(rt(TICK * k), &mut link);
             if let Some(err) = t.failed {
                 assert_eq!(err.rapid_error(), Some("ERR_UDPUC_COMM"));
                 assert_eq!(err.event().number, 41822);

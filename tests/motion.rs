@@ -1133,19 +1133,29 @@ mod settings_and_guidance {
     }
 
     /// Moves axis 1 at `step` degrees per cycle for `n` cycles.
-    struct Jog {
+    struct JogState {
         step: f64,
         n: usize,
     }
 
+    /// The guidance of a [`JogState`] the test keeps a handle on (the shell's typed access).
+    struct Jog(std::sync::Arc<std::sync::Mutex<JogState>>);
+
+    /// A jog and the test's handle on its state.
+    fn jog(step: f64, n: usize) -> (Box<Jog>, std::sync::Arc<std::sync::Mutex<JogState>>) {
+        let state = std::sync::Arc::new(std::sync::Mutex::new(JogState { step, n }));
+        (Box::new(Jog(std::sync::Arc::clone(&state))), state)
+    }
+
     impl ExternalGuidance for Jog {
         fn step(&mut self, _now: RobotTime, current: &JointsDeg) -> GuidanceStep {
-            if self.n == 0 {
+            let mut j = self.0.lock().unwrap();
+            if j.n == 0 {
                 return GuidanceStep::Finished;
             }
-            self.n -= 1;
+            j.n -= 1;
             let mut q = *current;
-            q[0] += self.step;
+            q[0] += j.step;
             GuidanceStep::MoveTo(q)
         }
     }
@@ -1158,12 +1168,13 @@ mod settings_and_guidance {
             .unwrap();
         core.tick(RobotTime::from_nanos(4_000_000));
         assert_eq!(
-            core.start_external(Box::new(Jog { step: 0.1, n: 10 }), ToolData::tool0(), None),
+            core.start_external(jog(0.1, 10).0, ToolData::tool0(), None),
             Err(MotionError::NotAtStopPoint)
         );
         let mut tick = 1;
         run(&mut core, &mut tick);
-        core.start_external(Box::new(Jog { step: 0.1, n: 10 }), ToolData::tool0(), None)
+        let (guidance, handle) = jog(0.1, 10);
+        core.start_external(guidance, ToolData::tool0(), None)
             .unwrap();
         assert!(matches!(
             core.enqueue(abs_j(2, START, 1000.0, 0.0)),
@@ -1171,7 +1182,7 @@ mod settings_and_guidance {
         ));
         while core.take_event().is_some() {}
         // The shell reaches the running guidance between cycles.
-        assert_eq!(core.guidance_as::<Jog>().map(|j| j.n), Some(10));
+        assert_eq!(handle.lock().unwrap().n, 10);
         for _ in 0..12 {
             tick += 1;
             core.tick(RobotTime::from_nanos(tick * 4_000_000));
@@ -1187,7 +1198,7 @@ mod settings_and_guidance {
         let sps = run_all(&mut core, vec![abs_j(3, START, 1000.0, 0.0)]);
         assert!(sps.last().unwrap().joints[0].abs() < 1e-9);
         // A reference faster than axis 1 allows (175°/s = 0.7° per cycle) stops the robot.
-        core.start_external(Box::new(Jog { step: 2.0, n: 10 }), ToolData::tool0(), None)
+        core.start_external(jog(2.0, 10).0, ToolData::tool0(), None)
             .unwrap();
         tick += 1000;
         let sp = core.tick(RobotTime::from_nanos(tick * 4_000_000));
@@ -1308,13 +1319,14 @@ mod settings_and_guidance {
     /// Feeds the running `Jog` a new step before every cycle and counts cycles.
     struct Feeder {
         before: usize,
+        jog: std::sync::Arc<std::sync::Mutex<JogState>>,
     }
 
     impl rapidvc::controller::CycleHook for Feeder {
         fn before_tick(&mut self, _now: RobotTime, exec: &mut rapidvc::motion::Executor) {
             self.before += 1;
-            if let Some(j) = exec.guidance_as::<Jog>() {
-                j.step = 0.5;
+            if exec.state().mode == rapidvc::motion::CoreMode::External {
+                self.jog.lock().unwrap().step = 0.5;
             }
         }
     }
@@ -1323,14 +1335,17 @@ mod settings_and_guidance {
     fn the_cycle_hook_reaches_the_guidance() {
         use rapidvc::controller::{Condition, ControllerConfig, ControllerHandle};
         use rapidvc::motion::CoreMode;
+        let (guidance, handle) = jog(0.0, 4);
         let mut c = ControllerHandle::start_with_hook(
             ControllerConfig::new(Robot::default(), START),
             vec![],
-            Some(Box::new(Feeder { before: 0 })),
+            Some(Box::new(Feeder {
+                before: 0,
+                jog: handle,
+            })),
         )
         .unwrap();
-        c.start_external(Box::new(Jog { step: 0.0, n: 4 }), ToolData::tool0(), None)
-            .unwrap();
+        c.start_external(guidance, ToolData::tool0(), None).unwrap();
         // 4 cycles of 0.5° (the step the hook sets), then the guidance ends.
         let st = c
             .wait_until(Condition::Predicate(Box::new(|s| {

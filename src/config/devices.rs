@@ -435,31 +435,58 @@ impl DeviceTable {
                 seam: (*seam).to_string(),
             });
         }
-        match (&self.sio, sio_device) {
-            (_, Some(d)) => Err(DeviceError::Unsupported {
+        if let Some(d) = sio_device {
+            return Err(DeviceError::Unsupported {
                 name: d.name.clone(),
                 kind: match &d.kind {
                     SioDeviceKind::Unsupported { type_name } => type_name.clone(),
                     SioDeviceKind::UdpUc(_) => super::sio::UDPUC_TYPE.to_string(),
                 },
+            });
+        }
+        match self.unlisted_known() {
+            None => Ok(DeviceTarget::Builtin { pattern: None }),
+            Some(known) => Err(DeviceError::NotConfigured {
+                name: key.to_string(),
+                known,
             }),
-            (None, None) => Ok(DeviceTarget::Builtin { pattern: None }),
-            (Some(sio), None) => {
-                let known: Vec<String> = sio
-                    .devices
-                    .iter()
-                    .map(|d| format!("\"{}\"", d.name))
-                    .collect();
-                Err(DeviceError::NotConfigured {
-                    name: key.to_string(),
-                    known: if known.is_empty() {
-                        "no devices".to_string()
-                    } else {
-                        known.join(", ")
-                    },
-                })
+        }
+    }
+
+    /// Every name the table defines, once each (case-insensitive): the overrides', SIO.cfg's
+    /// devices' and the simulated LTAPP devices'. Any other name resolves as
+    /// [`DeviceTable::unlisted_known`] says.
+    pub fn names(&self) -> Vec<String> {
+        let overrides = self.overrides.iter().map(|o| o.name.clone());
+        let sio = self
+            .sio
+            .iter()
+            .flat_map(|s| s.devices.iter().map(|d| d.name.clone()));
+        let simulated = SIMULATED_LTAPP.iter().map(|(n, _)| (*n).to_string());
+        let mut names: Vec<String> = Vec::new();
+        for name in overrides.chain(sio).chain(simulated) {
+            if !names.iter().any(|n| n.eq_ignore_ascii_case(&name)) {
+                names.push(name);
             }
         }
+        names
+    }
+
+    /// What a name the table does not define resolves to: `None` — the built-in sensor (no
+    /// SIO.cfg was read); `Some(known)` — not configured, SIO.cfg defines `known` (quoted and
+    /// comma-separated, or "no devices").
+    pub fn unlisted_known(&self) -> Option<String> {
+        let sio = self.sio.as_ref()?;
+        let known: Vec<String> = sio
+            .devices
+            .iter()
+            .map(|d| format!("\"{}\"", d.name))
+            .collect();
+        Some(if known.is_empty() {
+            "no devices".to_string()
+        } else {
+            known.join(", ")
+        })
     }
 }
 

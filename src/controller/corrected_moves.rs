@@ -29,8 +29,8 @@
 //! * Every corrected move is announced to the hook before it is queued as a plain `MoveL` /
 //!   `MoveC`: the planner plans it uncorrected, the executor adds the smoothed correction in
 //!   the path frame each cycle (`motion::correction`) and the trace names it `EGMMoveL`.
-//! * Each cycle after the tick the hook sends the robot's state to the sensor at the
-//!   EGMActMove rate (`EgmRobot`; simulated seams and signals are sampled instead), gives the
+//! * Each cycle after the tick the hook hands the device's waiting datagrams to the link,
+//!   ticks it and sends the robot's state it produced to the sensor at the EGMActMove rate (`EgmRobot`; simulated seams and signals are sampled instead), gives the
 //!   corrections that come back to the corrector — a rejected one (NaN: 90104; too large or
 //!   too old: 90132) is an event and the previous correction stays — and pushes one
 //!   path-correction sample (arc length, correction in y and z) into the output feed.
@@ -62,7 +62,7 @@ use crate::robot::command::MotionCommand;
 
 use super::ControllerError;
 use super::condition::Condition;
-use super::egm_controller::LastMove;
+use super::egm_controller::{DeviceSocket, LastMove};
 use super::handle::ControllerHandle;
 
 use correction_hook::Request;
@@ -234,7 +234,12 @@ impl PathCorr {
                 Ok(Report::Failed(e)) => {
                     self.failed.get_or_insert(e);
                 }
-                Ok(Report::Ended(link)) => self.last_link = Some(link),
+                Ok(Report::Ended(ended)) => {
+                    let (link, socket) = *ended;
+                    // The device's socket closes here, off the motion cycle.
+                    drop(socket);
+                    self.last_link = Some(Box::new(link));
+                }
                 Ok(Report::Left) => self.left = true,
                 Err(TryRecvError::Empty) | Err(TryRecvError::Disconnected) => return,
             }
@@ -360,16 +365,16 @@ impl PathCorr {
                 instruction,
                 detail: e.to_string(),
             })?;
-        let source = EgmSource::open(&plan.source)?;
+        let socket = DeviceSocket::open(&plan.source)?;
         let link = CorrectionLink::start(
             st.setpoint.time,
             &self.ctx,
             plan,
-            source,
+            EgmSource::new(&plan.source),
             &st.setpoint.joints,
         )?;
         let name: std::sync::Arc<str> = std::sync::Arc::from(plan.name.as_str());
-        self.send(Request::Begin(Box::new((seam, link, name))))
+        self.send(Request::Begin(Box::new((seam, link, socket, name))))
     }
 
     /// The corrected move `ticket` ends in a fine point: wait until the robot stands there,

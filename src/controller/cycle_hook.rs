@@ -8,8 +8,8 @@ use crate::time::RobotTime;
 /// Called around every motion cycle. Runs on the real-time path: keep it short, never block
 /// for long, never panic.
 pub trait CycleHook: Send {
-    /// Before the cycle at `now` (e.g. hand the newest sensor reference to the guidance
-    /// through [`Executor::guidance_as`]).
+    /// Before the cycle at `now` (e.g. hand the datagrams that arrived to the running
+    /// guidance, through the hook's own typed handle on it).
     fn before_tick(&mut self, now: RobotTime, exec: &mut Executor) {
         let _ = (now, exec);
     }

@@ -5,11 +5,14 @@
 //! * [`EgmController`] lives on the program's side (the interpreter's host calls it, with the
 //!   [`ControllerHandle`]): it owns the registry, opens data sources, starts runs and
 //!   streams, and takes back what the cycle hook reports.
-//! * [`EgmHook`] runs around every motion cycle ([`crate::controller::CycleHook`]): it ticks
-//!   the streams, hands events and log rows out, waits for the sensor in lockstep, and
-//!   returns a finished run to the program side.
-//! * An EGM run is an [`crate::motion::ExternalGuidance`] whose `step` ticks the
-//!   [`crate::egm::EgmDriver`]; EGMStop and a program stop reach it through atomics.
+//! * [`EgmHook`] runs around every motion cycle ([`crate::controller::CycleHook`]): it owns
+//!   the cycle's EGM I/O (drains the devices' sockets into the machines before the tick,
+//!   sends what they produced after it, `device_socket.rs`), ticks the streams, hands events
+//!   and log rows out, waits for the sensor in lockstep, and returns a finished run to the
+//!   program side.
+//! * An EGM run is an [`crate::motion::ExternalGuidance`] whose `step` ticks the sans-IO
+//!   [`crate::egm::EgmDriver`] (`run_guidance.rs`); EGMStop and a program stop reach it
+//!   through atomics.
 //!
 //! # Decisions
 //!
@@ -47,23 +50,27 @@ use crate::egm::session::DropCounts;
 use crate::egm::{
     DriverContext, DriverOptions, EgmDriver, EgmEnd, EgmError, EgmEvent, EgmSource, EgmStream,
 };
-use crate::motion::{CoreMode, ExternalGuidance, InstrRef};
+use crate::motion::{CoreMode, InstrRef};
 use crate::robot::{Pose, Robot};
 use crate::signals::SignalTable;
 
 use super::{Condition, ControllerError, ControllerHandle};
 
+mod device_socket;
+mod egm_config;
 mod egm_hook;
 mod egm_instructions;
 mod message_log_thread;
 mod run_guidance;
 
 use super::corrected_moves::{PathCorr, path_correction_for};
+pub use device_socket::DeviceSocket;
+pub use egm_config::{device_values, profiles, registry_config};
 pub use egm_hook::EgmHook;
 use egm_hook::{NamedEvent, Shared, StreamSlot};
 pub use egm_instructions::{EgmParts, host_error};
 use message_log_thread::Logger;
-use run_guidance::{EgmGuidance, RunControl};
+use run_guidance::{EgmGuidance, RunControl, RunStep};
 
 /// Capacity of the event channel from the cycle hook.
 const EVENT_CAPACITY: usize = 1024;
@@ -201,7 +208,7 @@ pub struct EgmController {
     ctx: DriverContext,
     shared: Arc<Shared>,
     events_rx: Receiver<NamedEvent>,
-    retired_rx: Receiver<Box<dyn ExternalGuidance>>,
+    retired_rx: Receiver<Box<EgmGuidance>>,
     feed: Option<Feed>,
     run: Option<ActiveRun>,
     events: Vec<(String, EgmEvent)>,
@@ -635,11 +642,7 @@ impl EgmController {
         while let Ok(e) = self.events_rx.try_recv() {
             self.events.push((e.name.to_string(), e.event));
         }
-        while let Ok(retired) = self.retired_rx.try_recv() {
-            let any: Box<dyn std::any::Any> = retired;
-            let Ok(g) = any.downcast::<EgmGuidance>() else {
-                continue;
-            };
+        while let Ok(g) = self.retired_rx.try_recv() {
             let result = match g.driver.outcome() {
                 Some(Ok(end)) => Ok(*end),
                 Some(Err(e)) => Err(RunFailure::Egm(e.clone())),
@@ -751,15 +754,16 @@ impl EgmController {
             }
             plan.max_speed_deviation = cap;
         }
-        let source = if plan.stops_stream {
-            match self.take_stream(id) {
-                Some(s) => Ok(s.stream.into_source()),
-                None => EgmSource::open(&plan.source),
-            }
+        let stream = if plan.stops_stream {
+            self.take_stream(id)
         } else {
-            EgmSource::open(&plan.source)
+            None
         };
-        let source = match source {
+        let opened = match stream {
+            Some(s) => Ok((s.stream.into_source(), s.socket)),
+            None => DeviceSocket::open(&plan.source).map(|s| (EgmSource::new(&plan.source), s)),
+        };
+        let (source, socket) = match opened {
             Ok(s) => s,
             Err(e) => {
                 self.registry.run_finished(id, false);
@@ -780,11 +784,17 @@ impl EgmController {
             id,
             name: Arc::from(plan.name.as_str()),
             driver,
+            socket,
+            stepped: false,
             control: Arc::clone(&control),
             speed_limited: false,
             last: None,
         };
-        if let Err(e) = handle.start_external(Box::new(guidance), plan.tool, instr) {
+        let slot = &self.shared.run;
+        *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(guidance);
+        let step = Box::new(RunStep(Arc::clone(slot)));
+        if let Err(e) = handle.start_external(step, plan.tool, instr) {
+            slot.lock().unwrap_or_else(PoisonError::into_inner).take();
             self.registry.run_finished(id, false);
             return Err(e.into());
         }
@@ -805,17 +815,19 @@ impl EgmController {
         handle: &mut ControllerHandle,
         plan: StreamPlan,
     ) -> Result<(), EgmFailure> {
-        let started = EgmSource::open(&plan.source).and_then(|source| {
+        let started = DeviceSocket::open(&plan.source).and_then(|socket| {
             let now = handle.now();
             let current = handle.state().setpoint.joints;
-            EgmStream::start(now, &self.ctx, &plan, source, &current)
+            let source = EgmSource::new(&plan.source);
+            EgmStream::start(now, &self.ctx, &plan, source, &current).map(|s| (s, socket))
         });
         match started {
-            Ok(stream) => {
+            Ok((stream, socket)) => {
                 self.streams().push(StreamSlot {
                     id: plan.id,
                     name: Arc::from(plan.name.as_str()),
                     stream,
+                    socket,
                 });
                 self.push_state(handle, EgmTraceState::Running);
                 Ok(())

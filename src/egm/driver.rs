@@ -1,16 +1,19 @@
-//! One EGM run (EGMRunJoint / EGMRunPose) as a per-tick state machine for the controller's real-time loop: references in, servo step, `EgmRobot` out, convergence, stops and errors.
+//! One EGM run (EGMRunJoint / EGMRunPose) as a sans-IO per-tick state machine for the controller's loop: datagrams in, servo step, `EgmRobot` out, convergence, stops and errors.
 //!
 //! # Use
 //!
 //! ```text
 //! plan   = registry.run_joint(id, &args, axes)?            // interpreter thread
-//! source = EgmSource::open(&plan.source)?                    // may bind a socket
+//! source = EgmSource::new(&plan.source)                      // the controller binds the socket
 //! driver = EgmDriver::start(now, &ctx, &plan, source, &q)?   // q: the fine point
-//! every motion tick (4 ms):
+//! every motion tick (4 ms), in the controller's loop:
+//!     for (from, bytes) in socket.drain() { driver.handle_datagram(now, from, bytes) }
 //!     t = driver.tick(now, &q)      // q: last commanded joints
+//!     if let Some((to, bytes)) = driver.poll_transmit(now) { socket.send_to(bytes, to) }
 //!     command t.joints_cmd; while let Some(e) = driver.poll_event() { log e }
 //!     while let Some(row) = driver.pop_log() { egm-log }     // or later, off the RT path
-//!     if lockstep && driver.awaiting_reply() { driver.wait_reply(opts.reply_timeout) }
+//!     if lockstep && driver.awaiting_reply() { wait for the reply, handle it, then
+//!                                              driver.reply_wait_over() }
 //!     if let Some(result) = t.finished { registry.run_finished(id, result.is_ok()); … }
 //! EGMStop  → driver.stop(mode, ramp_out)    program stop → driver.halt()
 //! ```
@@ -20,8 +23,9 @@
 //!
 //! # Per tick
 //!
-//! 1. Receive: drain the UDP socket into the [`EgmSession`] (newest valid reference wins);
-//!    for signal sources, read the signals when a sample is due (every `\SampleRate`).
+//! 1. Receive: the datagrams handed in since the last tick are in the [`EgmSession`]
+//!    (newest valid reference wins); for signal sources, read the signals when a sample is
+//!    due (every `\SampleRate`).
 //! 2. Reference: joint mode takes the joints (and `speedRef`) as they are; pose mode turns
 //!    the sensor pose into joints with [`PoseGuidance::joint_target`] (IK nearest to
 //!    `current`, supervised) and `speedRef.cartesians` into joint speeds through the
@@ -33,7 +37,8 @@
 //! 3. Servo step ([`EgmServo`]): the control law, MaxSpeedDeviation (event 90110 when it
 //!    starts limiting — at the default 1 °/s it usually does), MaxPosDeviation (90111), and
 //!    the robot's axis ranges (90112): the command never crosses a joint limit.
-//! 4. Send the `EgmRobot` when due: `feedBack` = the measured (servo-delayed) position,
+//! 4. Encode the `EgmRobot` when due (for [`DatagramMachine::poll_transmit`]; the built-in
+//!    sensor answers it in process at once): `feedBack` = the measured (servo-delayed) position,
 //!    `planned` = the commanded one; the Cartesian parts are the TCP of `\Tool` relative to
 //!    the correction frame in pose mode and to `\WObj` in joint mode (guidance's feedback
 //!    rules); MOTORS_ON, RAPID_RUNNING (RAPID_STOPPED after [`EgmDriver::halt`]), MCI
@@ -51,8 +56,8 @@
 //!
 //! # Lockstep (virtual time driven by an external sensor)
 //!
-//! After a tick that sent to an external sensor, [`EgmDriver::awaiting_reply`] is true until
-//! a valid reply arrived. [`EgmDriver::wait_reply`] blocks (real time, outside the tick) up
+//! After a tick that sent to an external sensor, [`DatagramMachine::awaiting_reply`] is true until
+//! a valid reply arrived. The controller's loop then blocks (real time, outside the tick) up
 //! to a per-message time-out for it, so a virtual-time controller advances only when the
 //! sensor has answered and runs as fast as the sensor allows. This relies on the sensor
 //! replying once per received message, which all four tested clients do (abb_libegm,
@@ -61,10 +66,11 @@
 //! time (abb_libegm's `isConnected`) see virtual milliseconds. Once the comm time-out has
 //! been declared (41822) nothing is awaited any more: the ramp-out runs without waits.
 //!
-//! Nothing here panics, and `tick` neither sleeps nor blocks (the UDP socket is
-//! non-blocking); it allocates only for event texts, and in pose mode inside the IK.
+//! Nothing here panics, owns a socket, reads a clock, sleeps or blocks; `tick` allocates only
+//! for event texts, and in pose mode inside the IK.
 
 use std::collections::VecDeque;
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -80,7 +86,7 @@ use crate::egm::servo::{
     DEFAULT_RAMP_TIME, EgmServo, EndCause, ServoInput, ServoOutput, ServoPhase, StopMode,
     axis_limit_event, pos_clamp_event, speed_limit_event,
 };
-use crate::egm::session::{EgmConfig, EgmSession, EgmStats, SourceFilter};
+use crate::egm::session::{EgmConfig, EgmSession, EgmStats, Outcome, SourceFilter};
 use crate::egm::types::{
     EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, ROBOT_AXES, RapidData,
     RapidExecState, RobotFeedback, SensorReference, Target,
@@ -237,7 +243,6 @@ pub struct EgmDriver {
     log: LogRing,
     pending: Option<LogRow>,
     awaiting: bool,
-    now: RobotTime,
     do_to_sensor: Option<SignalId>,
     di_from_sensor: Option<SignalId>,
     out_of_bounds: bool,
@@ -295,14 +300,14 @@ impl EgmDriver {
         })?;
         let moves = plan.moves();
         let link = match source {
-            EgmSource::Udp { device, transport } => {
-                let mut session = new_session(plan, ctx, transport.remote(), opts.source_filter)?;
+            EgmSource::Udp { device, remote } => {
+                let mut session = new_session(plan, ctx, remote, opts.source_filter)?;
                 if moves {
                     session.start(now);
                 }
                 Link::Session {
                     session: Box::new(session),
-                    peer: Peer::Udp(transport),
+                    peer: Peer::external(remote),
                     buf: Vec::with_capacity(512),
                     device,
                 }
@@ -382,7 +387,6 @@ impl EgmDriver {
             log: LogRing::new(&plan.name, opts.log_capacity),
             pending: None,
             awaiting: false,
-            now,
             do_to_sensor: plan.do_to_sensor,
             di_from_sensor: plan.di_from_sensor,
             out_of_bounds: false,
@@ -479,16 +483,6 @@ impl EgmDriver {
         }
     }
 
-    /// The local address of a UdpUc device's socket.
-    pub fn local_addr(&self) -> Option<std::net::SocketAddr> {
-        match &self.link {
-            Link::Session {
-                peer: Peer::Udp(t), ..
-            } => t.local_addr().ok(),
-            _ => None,
-        }
-    }
-
     /// The next event (speed limit, clamps, dropped datagrams, …).
     pub fn poll_event(&mut self) -> Option<EgmEvent> {
         self.events.pop()
@@ -525,13 +519,6 @@ impl EgmDriver {
         }
     }
 
-    /// Lockstep: a message went to an external sensor and no valid reply came yet. Never
-    /// once the comm time-out was declared (41822): the sensor is taken for dead, and the
-    /// ramp-out after it runs at the pace of virtual time, not of a wait per cycle.
-    pub fn awaiting_reply(&self) -> bool {
-        self.awaiting && self.outcome.is_none() && !self.comm_timed_out()
-    }
-
     /// True once the session's comm time-out expired (event 41822).
     fn comm_timed_out(&self) -> bool {
         match &self.link {
@@ -540,27 +527,9 @@ impl EgmDriver {
         }
     }
 
-    /// Lockstep: blocks up to `timeout` (real time) for the reply to the last message and
-    /// hands it to the session; returns whether a valid reply arrived. Either way the
-    /// driver stops waiting for this message. Datagrams from other senders or that are
-    /// invalid are dropped as usual and do not end the wait. Never call it inside the
-    /// real-time tick.
-    pub fn wait_reply(&mut self, timeout: Duration) -> bool {
-        if !self.awaiting_reply() {
-            return false;
-        }
-        self.awaiting = false;
-        let now = self.now;
-        let Link::Session { session, peer, .. } = &mut self.link else {
-            return false;
-        };
-        peer.wait_reply(now, timeout, session, &mut self.events)
-    }
-
     /// One motion tick at `now`; `current` are the joints commanded last (normally the
     /// previous tick's `joints_cmd`), used as the IK seed.
     pub fn tick(&mut self, now: RobotTime, current: &Joints) -> EgmTick {
-        self.now = now;
         if self.outcome.is_some() {
             return self.idle_tick(None);
         }
@@ -638,10 +607,7 @@ impl EgmDriver {
     fn receive(&mut self, now: RobotTime) -> (Option<Incoming>, bool) {
         let half = self.tick_period / 2;
         match &mut self.link {
-            Link::Session { session, peer, .. } => {
-                if peer.receive(now, session, &mut self.events) {
-                    self.awaiting = false;
-                }
+            Link::Session { session, .. } => {
                 session.handle_timeout(now);
                 forward_events(session, &mut self.events);
                 let timed_out = session.comm_timed_out();
@@ -706,6 +672,87 @@ impl EgmDriver {
             finished,
         }
     }
+}
+
+impl DatagramMachine for EgmDriver {
+    /// Hands the datagram to the session while the run receives (not before it moves, not
+    /// once it finished: those stay unread, as a finished run's socket closes).
+    fn handle_datagram(&mut self, now: RobotTime, from: SocketAddr, bytes: &[u8]) -> bool {
+        if self.outcome.is_some() || self.no_movement {
+            return false;
+        }
+        let Link::Session { session, .. } = &mut self.link else {
+            return false;
+        };
+        let accepted = session.handle_datagram(now, from, bytes) == Outcome::Accepted;
+        if accepted {
+            self.awaiting = false;
+        }
+        accepted
+    }
+
+    fn poll_transmit(&mut self, _now: RobotTime) -> Option<(SocketAddr, &[u8])> {
+        match &mut self.link {
+            Link::Session { peer, buf, .. } => peer.take_transmit(buf),
+            Link::Signals { .. } => None,
+        }
+    }
+
+    fn poll_timeout(&self) -> Option<RobotTime> {
+        if self.outcome.is_some() {
+            return None;
+        }
+        match &self.link {
+            Link::Session { session, .. } => session.poll_timeout(),
+            Link::Signals { next_sample, .. } => Some(*next_sample),
+        }
+    }
+
+    /// Never once the comm time-out was declared (41822): the sensor is taken for dead, and
+    /// the ramp-out after it runs at the pace of virtual time, not of a wait per cycle.
+    fn awaiting_reply(&self) -> bool {
+        self.awaiting && self.outcome.is_none() && !self.comm_timed_out()
+    }
+
+    fn reply_wait_over(&mut self) {
+        self.awaiting = false;
+    }
+
+    fn transport_error(&mut self, event: EgmEvent) {
+        self.events.push(event);
+    }
+}
+
+/// The datagram side of a sans-IO EGM machine (a run's [`EgmDriver`], an [`EgmStream`], a
+/// [`CorrectionLink`]): what the controller's cycle calls to carry its datagrams. The
+/// machines own no socket, read no clock and never block; the loop drains the device's
+/// socket into [`DatagramMachine::handle_datagram`] before the machine's tick and sends what
+/// [`DatagramMachine::poll_transmit`] returns after it (see `docs/architecture.md`, "One
+/// motion cycle").
+pub trait DatagramMachine {
+    /// A datagram from `from` arrived (handled at `now`, the cycle's time). Returns whether
+    /// the session accepted it as a valid sensor message.
+    fn handle_datagram(&mut self, now: RobotTime, from: SocketAddr, bytes: &[u8]) -> bool;
+
+    /// The datagram the last tick produced for an external sensor, once: the address to
+    /// send it to and its bytes.
+    fn poll_transmit(&mut self, now: RobotTime) -> Option<(SocketAddr, &[u8])>;
+
+    /// When the machine next has something to do by time alone (its comm time-out, its next
+    /// sample), if ever.
+    fn poll_timeout(&self) -> Option<RobotTime>;
+
+    /// Lockstep: a message went to an external sensor and no valid reply came yet; never
+    /// once the comm time-out was declared (41822).
+    fn awaiting_reply(&self) -> bool;
+
+    /// Lockstep: the loop stopped waiting for the reply to the last message (it came, or the
+    /// wait timed out); the machine awaits nothing until it sends again.
+    fn reply_wait_over(&mut self);
+
+    /// A failure of the transport (sending or receiving), reported with the machine's
+    /// events.
+    fn transport_error(&mut self, event: EgmEvent);
 }
 
 /// The session's events, except 41822 (the run's `CommTimeout` error carries it).

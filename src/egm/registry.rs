@@ -40,9 +40,6 @@
 
 use std::time::Duration;
 
-use crate::config::devices::{DeviceTable, DeviceTarget};
-use crate::config::moc::{ExtMotionProfile, MocConfig, MotionLevel};
-use crate::config::sio::device_key;
 use crate::egm::geometry::{Convergence, EgmFrameType, GuidanceError, PoseSetup, SignalSource};
 use crate::egm::path_correction::SeamProfile;
 use crate::egm::servo::MinMax;
@@ -54,6 +51,7 @@ use crate::signals::SignalTable;
 mod activate;
 mod args;
 mod check;
+pub mod configuration;
 mod movement;
 mod setup;
 use check::{
@@ -67,6 +65,10 @@ mod plan;
 pub use args::{
     ActCommon, ActJoint, ActMove, ActPose, RunArgs, SetupLtapp, SetupSignals, SetupUc, TrackerKind,
     frame_type_from_value, stop_mode_from_value, stop_mode_value,
+};
+pub use configuration::{
+    DeviceError, DeviceTarget, Devices, MotionLevel, MotionProfile, Profiles, UnknownProfile,
+    Unlisted, device_key,
 };
 pub use error::{ERR_UDPUC_COMM, EgmError};
 pub use plan::{
@@ -150,23 +152,24 @@ struct Identity {
     corr: CorrState,
 }
 
-/// What the registry needs from the configuration.
-#[derive(Clone, Debug)]
+/// What the registry needs from the configuration, as plain values (the controller converts
+/// its configuration: `controller::egm_controller::registry_config`).
+#[derive(Clone, Debug, Default)]
 pub struct RegistryConfig {
     /// The TCP robot units the task may name as `MecUnit` (default `["ROB_1"]`).
     pub mecunits: Vec<String>,
     /// External Motion Interface Data profiles (MOC.cfg, with the built-in "default").
-    pub moc: MocConfig,
+    pub profiles: Profiles,
     /// UdpUc and simulated devices (SIO.cfg and `--device`).
-    pub devices: DeviceTable,
+    pub devices: Devices,
 }
 
 impl RegistryConfig {
     /// A configuration for the unit `ROB_1`.
-    pub fn new(moc: MocConfig, devices: DeviceTable) -> RegistryConfig {
+    pub fn new(profiles: Profiles, devices: Devices) -> RegistryConfig {
         RegistryConfig {
             mecunits: vec!["ROB_1".to_string()],
-            moc,
+            profiles,
             devices,
         }
     }

@@ -194,12 +194,6 @@ impl MotionCore {
         self.exec.start_external(guidance, tool, instr)
     }
 
-    /// The running external guidance as its concrete type (see
-    /// [`Executor::guidance_as`]).
-    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
-        self.exec.guidance_as::<T>()
-    }
-
     /// Take a guidance object that finished by itself.
     pub fn take_retired_guidance(&mut self) -> Option<Box<dyn ExternalGuidance>> {
         self.exec.take_retired()
@@ -219,11 +213,6 @@ impl MotionCore {
         correction: Option<Box<dyn PathCorrection>>,
     ) -> Option<Box<dyn PathCorrection>> {
         self.exec.set_path_correction(correction)
-    }
-
-    /// The installed path correction as its concrete type.
-    pub fn path_correction_as<T: PathCorrection>(&mut self) -> Option<&mut T> {
-        self.exec.path_correction_as::<T>()
     }
 }
 

@@ -25,10 +25,9 @@
 //! applied to the flange. A corrected cycle with a non-zero offset solves the inverse
 //! kinematics, which allocates (the solver returns its solutions in a `Vec`), as pose-mode
 //! EGM guidance does; uncorrected cycles and zero offsets do not. The implementation must not block, sleep or panic; it runs inside
-//! the motion cycle. The shell reaches it between cycles through
-//! [`super::Executor::path_correction_as`] to hand it sensor data and read what it applied.
-
-use std::any::Any;
+//! the motion cycle. The shell that installs it keeps its own typed handle on it (the object
+//! is shared, e.g. behind a lock only the motion thread takes) to hand it sensor data and read
+//! what it applied between cycles.
 
 use nalgebra::Vector3;
 
@@ -57,7 +56,7 @@ pub struct PathPoint {
 }
 
 /// A source of per-cycle path offsets (see the module docs).
-pub trait PathCorrection: Any + Send {
+pub trait PathCorrection: Send {
     /// True when the samples of `instr` are corrected.
     fn corrects(&self, instr: &InstrRef) -> bool;
 
@@ -95,6 +94,7 @@ mod tests {
         EXTAX_NONE, MotionCommand, MoveArgs, MoveJ, MoveL, RobTarget, SpeedData, ZoneData,
     };
     use crate::robot::{ConfData, Robot, ToolData};
+    use std::sync::{Arc, Mutex};
     use std::time::Duration;
 
     const DT: Duration = Duration::from_millis(4);
@@ -103,9 +103,22 @@ mod tests {
     struct Constant {
         ids: Vec<u64>,
         offset: Vector3<f64>,
-        points: Vec<PathPoint>,
+        record: Arc<Mutex<Record>>,
         fail_at: Option<f64>,
+    }
+
+    /// What a [`Constant`] saw, shared with the test.
+    #[derive(Default)]
+    struct Record {
+        points: Vec<PathPoint>,
         left: Vec<u64>,
+    }
+
+    /// Installs `c` in `core`; its record stays readable.
+    fn install(core: &mut MotionCore, c: Constant) -> Arc<Mutex<Record>> {
+        let record = Arc::clone(&c.record);
+        core.set_path_correction(Some(Box::new(c)));
+        record
     }
 
     impl Constant {
@@ -113,9 +126,8 @@ mod tests {
             Constant {
                 ids: ids.to_vec(),
                 offset: Vector3::from(offset),
-                points: Vec::new(),
+                record: Arc::default(),
                 fail_at: None,
-                left: Vec::new(),
             }
         }
     }
@@ -139,7 +151,7 @@ mod tests {
             _now: RobotTime,
             point: &PathPoint,
         ) -> Result<Vector3<f64>, MotionError> {
-            self.points.push(*point);
+            self.record.lock().unwrap().points.push(*point);
             if self.fail_at.is_some_and(|s| point.s >= s) {
                 return Err(stop("the sensor stopped answering"));
             }
@@ -147,7 +159,7 @@ mod tests {
         }
 
         fn leave(&mut self, _now: RobotTime, instr: &InstrRef) -> Result<(), MotionError> {
-            self.left.push(instr.id);
+            self.record.lock().unwrap().left.push(instr.id);
             Err(stop("not ended in a fine point"))
         }
     }
@@ -222,7 +234,7 @@ mod tests {
         let mut core = core_at_seam_start();
         let t0 = core.state().setpoint.tick;
         let start = pos(&core.state().setpoint);
-        core.set_path_correction(Some(Box::new(Constant::new(&[2], [0.0, 3.0, -2.0]))));
+        let rec = install(&mut core, Constant::new(&[2], [0.0, 3.0, -2.0]));
         core.enqueue(move_l(
             2,
             target(1400.0, 20.0, 500.0),
@@ -244,7 +256,7 @@ mod tests {
         }
         let end = pos(sps.last().unwrap());
         assert!((end - (Vector3::new(1400.0, 20.0, 500.0) + want)).norm() < 1e-6);
-        let c = core.path_correction_as::<Constant>().unwrap();
+        let c = rec.lock().unwrap();
         let first = c.points.first().unwrap();
         assert!(first.first && first.s > 0.0);
         assert!((first.s - (pos(&sps[0]) - want - start).norm()).abs() < 1e-9);
@@ -260,7 +272,7 @@ mod tests {
     fn uncorrected_moves_are_left_alone() {
         let mut core = core_at_seam_start();
         let t0 = core.state().setpoint.tick;
-        core.set_path_correction(Some(Box::new(Constant::new(&[99], [0.0, 3.0, 0.0]))));
+        let rec = install(&mut core, Constant::new(&[99], [0.0, 3.0, 0.0]));
         core.enqueue(move_l(
             2,
             target(1100.0, 20.0, 500.0),
@@ -274,19 +286,14 @@ mod tests {
             .map(|sp| (pos(sp).y - 20.0).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-6, "{worst}");
-        assert!(
-            core.path_correction_as::<Constant>()
-                .unwrap()
-                .points
-                .is_empty()
-        );
+        assert!(rec.lock().unwrap().points.is_empty());
     }
 
     #[test]
     fn a_sequence_that_does_not_end_in_a_stop_point_is_refused() {
         let mut core = core_at_seam_start();
         let t0 = core.state().setpoint.tick;
-        core.set_path_correction(Some(Box::new(Constant::new(&[2], [0.0, 1.0, 0.0]))));
+        let rec = install(&mut core, Constant::new(&[2], [0.0, 1.0, 0.0]));
         core.enqueue(move_l(2, target(1100.0, 20.0, 500.0), 100.0, z5()))
             .unwrap();
         core.enqueue(move_l(
@@ -307,14 +314,14 @@ mod tests {
             e.to_string(),
             "90999 test stop: not ended in a fine point (MoveL #3)"
         );
-        assert_eq!(core.path_correction_as::<Constant>().unwrap().left, [3]);
+        assert_eq!(rec.lock().unwrap().left, [3]);
     }
 
     #[test]
     fn a_corrected_stop_point_ends_the_sequence() {
         let mut core = core_at_seam_start();
         let t0 = core.state().setpoint.tick;
-        core.set_path_correction(Some(Box::new(Constant::new(&[2, 4], [0.0, 0.0, 1.0]))));
+        let rec = install(&mut core, Constant::new(&[2, 4], [0.0, 0.0, 1.0]));
         core.enqueue(move_l(
             2,
             target(1100.0, 20.0, 500.0),
@@ -342,7 +349,7 @@ mod tests {
             tick = sps.last().unwrap().tick;
         }
         assert!(!core.state().halted);
-        let c = core.path_correction_as::<Constant>().unwrap();
+        let c = rec.lock().unwrap();
         assert!(c.left.is_empty());
         // Two sequences, each starting at s = 0 from its fine point.
         let starts: Vec<_> = c
@@ -361,7 +368,7 @@ mod tests {
         let t0 = core.state().setpoint.tick;
         let mut c = Constant::new(&[2], [0.0, 1.0, 0.0]);
         c.fail_at = Some(50.0);
-        core.set_path_correction(Some(Box::new(c)));
+        let _rec = install(&mut core, c);
         core.enqueue(move_l(
             2,
             target(1400.0, 20.0, 500.0),
@@ -381,7 +388,7 @@ mod tests {
     fn an_unreachable_corrected_pose_stops_the_robot() {
         let mut core = core_at_seam_start();
         let t0 = core.state().setpoint.tick;
-        core.set_path_correction(Some(Box::new(Constant::new(&[2], [0.0, 0.0, 5000.0]))));
+        let _rec = install(&mut core, Constant::new(&[2], [0.0, 0.0, 5000.0]));
         core.enqueue(move_l(
             2,
             target(1100.0, 20.0, 500.0),
@@ -395,6 +402,6 @@ mod tests {
         assert!(matches!(e.error, MotionError::Kinematics { .. }), "{e}");
         // Removing the correction gives it back.
         assert!(core.set_path_correction(None).is_some());
-        assert!(core.path_correction_as::<Constant>().is_none());
+        assert!(core.set_path_correction(None).is_none());
     }
 }

@@ -326,13 +326,6 @@ impl Executor {
             .or_else(|| self.retired.take())
     }
 
-    /// The running external guidance, as its concrete type (between cycles: feed it the
-    /// newest reference, read its outputs).
-    pub fn guidance_as<T: ExternalGuidance>(&mut self) -> Option<&mut T> {
-        let g: &mut dyn std::any::Any = self.external.as_mut()?.guidance.as_mut();
-        g.downcast_mut::<T>()
-    }
-
     /// Take a guidance object that finished by itself (to drop it outside the cycle).
     pub fn take_retired(&mut self) -> Option<Box<dyn ExternalGuidance>> {
         self.retired.take()
@@ -346,13 +339,6 @@ impl Executor {
     ) -> Option<Box<dyn PathCorrection>> {
         self.track = None;
         std::mem::replace(&mut self.correction, correction)
-    }
-
-    /// The installed path correction, as its concrete type (between cycles: hand it sensor
-    /// data, read what it applied).
-    pub fn path_correction_as<T: PathCorrection>(&mut self) -> Option<&mut T> {
-        let c: &mut dyn std::any::Any = self.correction.as_mut()?.as_mut();
-        c.downcast_mut::<T>()
     }
 
     /// True while a path correction is installed.

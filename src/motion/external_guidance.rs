@@ -1,8 +1,6 @@
 //! The seam for external guidance (EGM): a per-cycle reference source that moves the robot
 //! instead of the planner, under the core's supervision (axis ranges and speeds).
 
-use std::any::Any;
-
 use crate::robot::JointsDeg;
 
 use crate::time::RobotTime;
@@ -23,10 +21,10 @@ pub enum GuidanceStep {
 /// `step` runs inside the motion cycle: it must not block, sleep, allocate or panic.
 /// Anything expensive belongs in the code that feeds it (the EGM session), outside the cycle.
 ///
-/// The shell that owns the core reaches the running guidance between cycles with
-/// `MotionCore::guidance_as::<T>()` (or `Executor::guidance_as`) to hand it the newest sensor
-/// reference before a tick and read its outputs after it (`Any` makes the downcast possible).
-pub trait ExternalGuidance: Any + Send {
+/// The shell that starts the guidance keeps its own typed handle on it (the object is shared,
+/// e.g. behind a lock only the motion thread takes) to hand it the newest sensor data before
+/// a tick and read its outputs after it; the core knows it only through this trait.
+pub trait ExternalGuidance: Send {
     /// The reference for the cycle at `now`, given the axis values of the previous cycle.
     fn step(&mut self, now: RobotTime, current: &JointsDeg) -> GuidanceStep;
 }

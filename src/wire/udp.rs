@@ -8,7 +8,7 @@
 
 use std::io;
 use std::net::{IpAddr, Ipv4Addr, Ipv6Addr, SocketAddr, UdpSocket};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Receive buffer: the largest UDP payload.
 const RECV_BUFFER: usize = 65_536;
@@ -59,7 +59,13 @@ impl UdpTransport {
 
     /// Sends one datagram to the remote address.
     pub fn send(&self, datagram: &[u8]) -> io::Result<()> {
-        let sent = self.socket.send_to(datagram, self.remote)?;
+        self.send_to(datagram, self.remote)
+    }
+
+    /// Sends one datagram to `to` (the protocol machine names the address; for an EGM
+    /// device it is the remote address).
+    pub fn send_to(&self, datagram: &[u8], to: SocketAddr) -> io::Result<()> {
+        let sent = self.socket.send_to(datagram, to)?;
         if sent == datagram.len() {
             Ok(())
         } else {
@@ -128,6 +134,32 @@ impl UdpTransport {
         let got = result?;
         restore?;
         Ok(got.map(|(src, len)| (src, self.buf.get(..len).unwrap_or(&[]))))
+    }
+
+    /// Waits up to `timeout` (real time) for a datagram `on_datagram` takes (returns true
+    /// for), handing it every datagram that arrives meanwhile; returns whether one was taken
+    /// before the time ran out. For the controller's lockstep wait.
+    pub fn wait_for(
+        &mut self,
+        timeout: Duration,
+        mut on_datagram: impl FnMut(SocketAddr, &[u8]) -> bool,
+    ) -> io::Result<bool> {
+        let start = Instant::now();
+        let deadline = start.checked_add(timeout).unwrap_or(start);
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return Ok(false);
+            }
+            match self.recv_timeout(left)? {
+                Some((src, bytes)) => {
+                    if on_datagram(src, bytes) {
+                        return Ok(true);
+                    }
+                }
+                None => return Ok(false),
+            }
+        }
     }
 }
 

@@ -22,13 +22,14 @@ use prost::Message;
 
 use crate::config::devices::DeviceTable;
 use crate::config::moc::MocConfig;
+use crate::controller::egm_controller::registry_config;
 use crate::controller::egm_controller::{EgmController, EgmHook, EgmSetup, LastMove};
 use crate::controller::{
     ClockMode, Condition, ControllerConfig, ControllerError, ControllerHandle, CycleHook,
     RealtimeConfig,
 };
 use crate::egm::latency::{LatencyHistogram, fmt_duration};
-use crate::egm::registry::{ActJoint, RegistryConfig, RunArgs, SetupUc};
+use crate::egm::registry::{ActJoint, RunArgs, SetupUc};
 use crate::egm::servo::StopMode;
 use crate::egm::{DriverOptions, EgmMode, proto};
 use crate::motion::{Executor, Setpoint};
@@ -317,7 +318,7 @@ fn drive(
         .map_err(|e: crate::config::devices::DeviceOverrideError| e.to_string())?;
     let devices = DeviceTable::new(None, &[device]).map_err(|e| e.to_string())?;
     let setup = EgmSetup {
-        registry: RegistryConfig::new(MocConfig::default(), devices),
+        registry: registry_config(&MocConfig::default(), &devices),
         driver: DriverOptions::default(),
         lockstep: matches!(mode, Mode::Lockstep)
             .then_some(crate::egm::driver::DEFAULT_REPLY_TIMEOUT),

@@ -6,10 +6,10 @@ use std::time::Duration;
 
 use crate::config::Config;
 use crate::config::devices::DeviceOverride;
+use crate::controller::egm_controller::registry_config;
 use crate::controller::egm_controller::{EgmController, EgmHook, EgmSetup};
 use crate::egm::DriverOptions;
 use crate::egm::driver::DEFAULT_REPLY_TIMEOUT;
-use crate::egm::registry::RegistryConfig;
 use crate::output::Feed;
 use crate::robot::Robot;
 use crate::signals::SignalTable;
@@ -88,7 +88,7 @@ impl EgmArgs {
             ..DriverOptions::default()
         };
         let setup = EgmSetup {
-            registry: RegistryConfig::new(cfg.moc.clone(), devices),
+            registry: registry_config(&cfg.moc, &devices),
             driver,
             lockstep: self.lockstep.then_some(driver.reply_timeout),
             feed,

@@ -1,10 +1,11 @@
-//! The motion side of path correction: [`PathCorrHook`], a `CycleHook` that installs each corrected sequence into the executor, runs its sensor link every cycle, feeds measurements to the corrector and path-correction samples to the output feed.
+//! The motion side of path correction: [`PathCorrHook`], a `CycleHook` that installs each corrected sequence into the executor (keeping a typed handle on it), carries its sensor link's datagrams and ticks the link every cycle, feeds measurements to the corrector and path-correction samples to the output feed.
 
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, SyncSender, TryRecvError, TrySendError};
 use std::time::Duration;
 
 use crate::controller::cycle_hook::CycleHook;
+use crate::controller::egm_controller::DeviceSocket;
 use crate::controller::sample_feed::{EgmTraceState, Feed, FeedItem, PathCorrSample};
 use crate::egm::CorrectionLink;
 use crate::egm::driver::CorrectionInput;
@@ -14,7 +15,7 @@ use crate::motion::{Executor, Setpoint};
 use crate::robot::{ToolData, WobjData};
 use crate::time::RobotTime;
 
-use super::seam_correction::{SeamCorrection, rejection_kind};
+use super::seam_correction::{SeamCorrection, SeamSlot, SharedSeam, rejection_kind, with_seam};
 use crate::egm::path_correction::Rejection;
 
 /// Rejected corrections are reported at most this often.
@@ -23,7 +24,7 @@ pub const REJECTION_REPEAT: Duration = Duration::from_secs(1);
 /// From the program side to the hook.
 pub(super) enum Request {
     /// Start a corrected sequence: install the correction, start exchanging with the sensor.
-    Begin(Box<(SeamCorrection, CorrectionLink, Arc<str>)>),
+    Begin(Box<(SeamCorrection, CorrectionLink, DeviceSocket, Arc<str>)>),
     /// A move of the running sequence (sent before the move is queued).
     Move(Box<super::seam_correction::CorrectedMove>),
     /// The sequence ended (its fine point was reached, or it was abandoned).
@@ -40,8 +41,9 @@ pub enum Report {
     /// The robot left the sequence without a fine point and stopped (its motion error
     /// reaches the program): the sequence is over.
     Left,
-    /// The sequence ended; the link comes back for its statistics.
-    Ended(Box<CorrectionLink>),
+    /// The sequence ended; the link comes back for its statistics, the device's socket to
+    /// be closed off the cycle.
+    Ended(Box<(CorrectionLink, DeviceSocket)>),
 }
 
 /// One EGM message log row of an identity (for `--egm-log`).
@@ -64,7 +66,9 @@ pub struct PathCorrHook {
     feed: Option<Feed>,
     log: Option<SyncSender<NamedLogRow>>,
     options: HookOptions,
-    link: Option<CorrectionLink>,
+    link: Option<(CorrectionLink, DeviceSocket)>,
+    /// The running sequence's correction (also installed in the executor).
+    seam: Option<SeamSlot>,
     name: Arc<str>,
     dropped: u64,
     last_rejection: Option<RobotTime>,
@@ -95,6 +99,7 @@ impl PathCorrHook {
             log,
             options,
             link: None,
+            seam: None,
             name: Arc::from(""),
             dropped: 0,
             last_rejection: None,
@@ -143,10 +148,11 @@ impl PathCorrHook {
         // The correction object is dropped here, outside the cycle's hot path; it holds no
         // heap memory worth handing back.
         drop(exec.set_path_correction(None));
-        if let Some(mut link) = self.link.take() {
+        self.seam = None;
+        if let Some((mut link, socket)) = self.link.take() {
             link.finish();
             self.forward(&mut link);
-            self.report(Report::Ended(Box::new(link)));
+            self.report(Report::Ended(Box::new((link, socket))));
         }
         if let Some(f) = &self.feed {
             f.push_egm_state(now, EgmTraceState::Connected);
@@ -176,9 +182,12 @@ impl CycleHook for PathCorrHook {
                     if self.link.is_some() {
                         self.end(now, exec);
                     }
-                    let (seam, link, name) = *b;
-                    drop(exec.set_path_correction(Some(Box::new(seam))));
-                    self.link = Some(link);
+                    let (seam, link, socket, name) = *b;
+                    let seam: SeamSlot = Arc::new(std::sync::Mutex::new(seam));
+                    let shared = SharedSeam(Arc::clone(&seam));
+                    drop(exec.set_path_correction(Some(Box::new(shared))));
+                    self.seam = Some(seam);
+                    self.link = Some((link, socket));
                     self.name = name;
                     self.last_rejection = None;
                     self.rejections_held = 0;
@@ -187,9 +196,11 @@ impl CycleHook for PathCorrHook {
                     }
                 }
                 Ok(Request::Move(m)) => {
-                    if let Some(seam) = exec.path_correction_as::<SeamCorrection>()
-                        && !seam.push_move(*m)
-                    {
+                    let pushed = self
+                        .seam
+                        .as_ref()
+                        .and_then(|seam| with_seam(seam, |s| s.push_move(*m)));
+                    if pushed == Some(false) {
                         self.event(EgmEvent::new(
                             crate::egm::EventKind::Busy,
                             "too many EGMMoveL/EGMMoveC queued in one corrected sequence",
@@ -202,15 +213,26 @@ impl CycleHook for PathCorrHook {
         }
     }
 
-    fn after_tick(&mut self, sp: &Setpoint, exec: &mut Executor) {
-        let Some(mut link) = self.link.take() else {
+    fn after_tick(&mut self, sp: &Setpoint, _exec: &mut Executor) {
+        let Some((mut link, mut socket)) = self.link.take() else {
             return;
         };
         let now = sp.time;
-        let Some(seam) = exec.path_correction_as::<SeamCorrection>() else {
-            self.link = Some(link);
+        let Some(slot) = self.seam.take() else {
+            self.link = Some((link, socket));
             return;
         };
+        // Only this thread (the motion cycle's) ever locks the slot.
+        let mut guard = match slot.try_lock() {
+            Ok(g) => g,
+            Err(std::sync::TryLockError::Poisoned(p)) => p.into_inner(),
+            Err(std::sync::TryLockError::WouldBlock) => {
+                self.seam = Some(Arc::clone(&slot));
+                self.link = Some((link, socket));
+                return;
+            }
+        };
+        let seam: &mut SeamCorrection = &mut guard;
         let applied = seam.applied();
         let fresh = applied.filter(|a| a.time == sp.time);
         let look_ahead = match seam.sensing() {
@@ -223,6 +245,7 @@ impl CycleHook for PathCorrHook {
             Some(m) => (&m.tool, &m.wobj),
             None => (&default_tool, &default_wobj),
         };
+        socket.receive(now, &mut link);
         let tick = link.tick(
             now,
             &CorrectionInput {
@@ -233,6 +256,7 @@ impl CycleHook for PathCorrHook {
                 look_ahead,
             },
         );
+        socket.send(now, &mut link);
         let mut rejected = None;
         if let Some(c) = tick.correction
             && let Err(r) = seam.measurement(c.received_at.as_secs_f64(), c.pos, c.age_s())
@@ -244,6 +268,8 @@ impl CycleHook for PathCorrHook {
         }
         let measured = seam.take_measured();
         let left = seam.take_left();
+        drop(guard);
+        self.seam = Some(slot);
         if let (Some(a), Some(f)) = (fresh, &self.feed) {
             f.push(FeedItem::PathCorr(PathCorrSample {
                 t: sp.time,
@@ -265,9 +291,9 @@ impl CycleHook for PathCorrHook {
             self.report(Report::Failed(err));
         }
         self.forward(&mut link);
-        if self.options.lockstep && link.awaiting_reply() {
-            link.wait_reply(self.options.reply_timeout);
+        if self.options.lockstep {
+            socket.wait_reply(now, self.options.reply_timeout, &mut link);
         }
-        self.link = Some(link);
+        self.link = Some((link, socket));
     }
 }

@@ -1,6 +1,7 @@
 //! The motion core's side of one corrected sequence: [`SeamCorrection`] implements `motion::PathCorrection` with the path frame and the `PathCorrector` of `egm::path_correction`, and remembers what it applied for the feed and the sensor link.
 
 use std::collections::VecDeque;
+use std::sync::{Arc, Mutex, TryLockError};
 
 use nalgebra::Vector3;
 
@@ -166,6 +167,42 @@ impl SeamCorrection {
     /// The tracker with the current look-ahead (for the simulated seam sensors).
     pub fn sensing(&self) -> Tracker {
         self.tracker(self.applied.map_or(0.0, |a| a.look_ahead))
+    }
+}
+
+/// The sequence's correction, shared by the executor (which calls it inside the cycle, through
+/// [`SharedSeam`]) and the path-correction hook (which reaches it, typed, around the cycle).
+/// Both run on the motion thread one after the other, so the lock is never contended.
+pub(super) type SeamSlot = Arc<Mutex<SeamCorrection>>;
+
+/// Runs `f` on the correction in `slot`: `None` only if another thread held it, which the
+/// motion thread's sole ownership rules out.
+pub(super) fn with_seam<R>(slot: &SeamSlot, f: impl FnOnce(&mut SeamCorrection) -> R) -> Option<R> {
+    match slot.try_lock() {
+        Ok(mut seam) => Some(f(&mut seam)),
+        Err(TryLockError::Poisoned(p)) => Some(f(&mut p.into_inner())),
+        Err(TryLockError::WouldBlock) => None,
+    }
+}
+
+/// The executor's handle on a [`SeamSlot`].
+pub(super) struct SharedSeam(pub SeamSlot);
+
+impl PathCorrection for SharedSeam {
+    fn corrects(&self, instr: &InstrRef) -> bool {
+        with_seam(&self.0, |s| s.corrects(instr)).unwrap_or(false)
+    }
+
+    fn offset(&mut self, now: RobotTime, point: &PathPoint) -> Result<Vector3<f64>, MotionError> {
+        with_seam(&self.0, |s| s.offset(now, point)).unwrap_or_else(|| Ok(Vector3::zeros()))
+    }
+
+    fn leave(&mut self, now: RobotTime, instr: &InstrRef) -> Result<(), MotionError> {
+        with_seam(&self.0, |s| s.leave(now, instr)).unwrap_or(Ok(()))
+    }
+
+    fn rename(&self, instr: &InstrRef) -> &'static str {
+        with_seam(&self.0, |s| s.rename(instr)).unwrap_or(instr.name)
     }
 }
 

@@ -12,7 +12,7 @@ use crate::config::moc::MocConfig;
 use crate::controller::sample_feed::{FeedItem, FeedRx, PathCorrSample};
 use crate::controller::{ControllerConfig, TickSink};
 use crate::egm::DriverOptions;
-use crate::egm::registry::{ActMove, RegistryConfig, SetupLtapp, SetupUc};
+use crate::egm::registry::{ActMove, SetupLtapp, SetupUc};
 use crate::egm::types::EgmMode;
 use crate::motion::Setpoint;
 use crate::robot::command::{
@@ -33,9 +33,9 @@ fn moc() -> MocConfig {
 
 fn registry(overrides: &[&str]) -> EgmRegistry {
     let o: Vec<DeviceOverride> = overrides.iter().map(|s| s.parse().unwrap()).collect();
-    EgmRegistry::new(RegistryConfig::new(
-        moc(),
-        DeviceTable::new(None, &o).unwrap(),
+    EgmRegistry::new(crate::controller::egm_controller::registry_config(
+        &moc(),
+        &DeviceTable::new(None, &o).unwrap(),
     ))
 }
 

@@ -1,14 +1,13 @@
-//! The EGM side of every motion cycle ([`EgmHook`], a [`CycleHook`]): position streams are ticked with the cycle's setpoint, the running EGM run's events and log rows are handed out (event channel, `--egm-log` writer, output feed), lockstep waits for the sensor's reply, and a run that ended is handed back to the program side.
+//! The EGM side of every motion cycle ([`EgmHook`], a [`CycleHook`]): it carries the datagrams of the EGM machines (before the tick the running run's device socket is drained into its driver; after it the driver's `EgmRobot` goes out), ticks the position streams with the cycle's setpoint, hands the run's events and log rows out (event channel, `--egm-log` writer, output feed), waits for the sensor's reply in lockstep, and hands a run that ended back to the program side.
 //!
 //! Runs on the motion thread in real time and inline in virtual time. It never blocks
-//! (bounded channels with `try_send`, a `try_lock` on the stream list) except for the
-//! lockstep wait, which only exists in virtual time, where the cycle runs on the program's
-//! thread anyway.
+//! (bounded channels with `try_send`, `try_lock` on the run slot and the stream list) except
+//! for the lockstep wait, the controller loop's policy for virtual time driven by an
+//! external sensor, where the cycle runs on the program's thread anyway.
 
-use std::any::Any;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::SyncSender;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 use std::time::Duration;
 
 use crate::controller::CycleHook;
@@ -18,10 +17,11 @@ use crate::egm::message_log::LogRow;
 use crate::egm::registry::EgmId;
 use crate::egm::types::RapidExecState;
 use crate::egm::{EgmEvent, EgmStream};
-use crate::motion::{Executor, ExternalGuidance, Setpoint};
+use crate::motion::{Executor, Setpoint};
 use crate::time::RobotTime;
 
-use super::run_guidance::EgmGuidance;
+use super::device_socket::DeviceSocket;
+use super::run_guidance::{EgmGuidance, RunSlot};
 
 /// A running position stream.
 #[derive(Debug)]
@@ -29,11 +29,15 @@ pub(crate) struct StreamSlot {
     pub id: EgmId,
     pub name: Arc<str>,
     pub stream: EgmStream,
+    /// Its device's socket.
+    pub socket: DeviceSocket,
 }
 
 /// What the program side and the hook share.
 #[derive(Debug, Default)]
 pub(crate) struct Shared {
+    /// The EGM run (the executor steps it through a `RunStep`).
+    pub run: Arc<RunSlot>,
     /// The running streams (the hook only ever `try_lock`s).
     pub streams: Mutex<Vec<StreamSlot>>,
     /// False once the program has stopped (streams report RAPID_STOPPED).
@@ -62,7 +66,7 @@ pub(crate) type NamedRow = (Arc<str>, LogRow);
 pub struct EgmHook {
     pub(crate) shared: Arc<Shared>,
     pub(crate) events: SyncSender<NamedEvent>,
-    pub(crate) retired: SyncSender<Box<dyn ExternalGuidance>>,
+    pub(crate) retired: SyncSender<Box<EgmGuidance>>,
     pub(crate) log: Option<SyncSender<NamedRow>>,
     pub(crate) feed: Option<Feed>,
     pub(crate) lockstep: Option<Duration>,
@@ -138,7 +142,9 @@ impl EgmHook {
         };
         let now = sp.time;
         for s in streams.iter_mut() {
+            s.socket.receive(now, &mut s.stream);
             s.stream.tick(now, &sp.joints, exec);
+            s.socket.send(now, &mut s.stream);
             while let Some(e) = s.stream.poll_event() {
                 self.event(&s.name, e);
             }
@@ -159,38 +165,58 @@ impl EgmHook {
     }
 }
 
+/// The run slot without waiting: `None` only while the program side holds it (then the
+/// run is not in the executor yet).
+fn try_slot(slot: &RunSlot) -> Option<MutexGuard<'_, Option<EgmGuidance>>> {
+    match slot.try_lock() {
+        Ok(g) => Some(g),
+        Err(TryLockError::Poisoned(p)) => Some(p.into_inner()),
+        Err(TryLockError::WouldBlock) => None,
+    }
+}
+
 impl CycleHook for EgmHook {
     fn before_tick(&mut self, now: RobotTime, exec: &mut Executor) {
         self.pathcorr.before_tick(now, exec);
+        if let Some(mut slot) = try_slot(&self.shared.run)
+            && let Some(g) = slot.as_mut()
+        {
+            g.socket.receive(now, &mut g.driver);
+        }
     }
 
     fn after_tick(&mut self, sp: &Setpoint, exec: &mut Executor) {
         self.pathcorr.after_tick(sp, exec);
-        if let Some(g) = exec.guidance_as::<EgmGuidance>() {
-            self.feed_run(sp, g);
-            self.drain_run(g);
-            if let Some(timeout) = self.lockstep
-                && g.driver.awaiting_reply()
-            {
-                self.shared.lockstep_waits.fetch_add(1, Ordering::Relaxed);
-                if !g.driver.wait_reply(timeout) {
-                    self.shared
-                        .lockstep_timeouts
-                        .fetch_add(1, Ordering::Relaxed);
-                }
-            }
-        }
-        if let Some(mut retired) = exec.take_retired() {
-            let any: &mut dyn Any = retired.as_mut();
-            if let Some(g) = any.downcast_mut::<EgmGuidance>() {
+        // The executor's guidance of a run that ended is only a handle on the slot.
+        let retired = exec.take_retired().is_some();
+        if let Some(mut slot) = try_slot(&self.shared.run)
+            && let Some(g) = slot.as_mut()
+        {
+            g.socket.send(sp.time, &mut g.driver);
+            if retired {
                 self.drain_run(g);
                 if let Some(feed) = &self.feed {
                     feed.push_egm_state(sp.time, EgmTraceState::Connected);
                 }
+                // At most one run exists at a time and the program side takes it before
+                // starting another, so the channel (capacity 4) has room.
+                if let Some(g) = slot.take() {
+                    let _ = self.retired.try_send(Box::new(g));
+                }
+            } else if g.stepped {
+                self.feed_run(sp, g);
+                self.drain_run(g);
+                if let Some(timeout) = self.lockstep
+                    && let Some(came) = g.socket.wait_reply(sp.time, timeout, &mut g.driver)
+                {
+                    self.shared.lockstep_waits.fetch_add(1, Ordering::Relaxed);
+                    if !came {
+                        self.shared
+                            .lockstep_timeouts
+                            .fetch_add(1, Ordering::Relaxed);
+                    }
+                }
             }
-            // At most one run exists at a time and the program side takes it before starting
-            // another, so the channel (capacity 4) has room.
-            let _ = self.retired.try_send(retired);
         }
         self.tick_streams(sp);
     }

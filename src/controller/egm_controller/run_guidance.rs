@@ -1,7 +1,14 @@
-//! One EGM run (EGMRunJoint/EGMRunPose) as the motion core's external guidance: the driver is ticked inside the motion cycle, and the program side reaches it only through lock-free requests (EGMStop, program stop).
+//! One EGM run (EGMRunJoint/EGMRunPose) as the motion core's external guidance: the driver is ticked inside the motion cycle (no I/O there: the cycle hook carries its datagrams before and after), and the program side reaches it only through lock-free requests (EGMStop, program stop).
+//!
+//! The run lives in one slot ([`RunSlot`]) that the executor's guidance ([`RunStep`]) and the
+//! cycle hook both reach, typed: the executor steps it inside the cycle, the hook drains the
+//! device's socket into it before the cycle and sends, reports and waits (lockstep) after.
+//! Both run on the same thread one after the other, so the slot's lock is never contended
+//! there; the program side fills the slot before it hands the run to the executor and the
+//! hook empties it when the run retired.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, TryLockError};
 use std::time::Duration;
 
 use crate::egm::registry::EgmId;
@@ -10,6 +17,8 @@ use crate::egm::{EgmDriver, EgmTick};
 use crate::motion::{ExternalGuidance, GuidanceStep};
 use crate::robot::JointsDeg;
 use crate::time::RobotTime;
+
+use super::device_socket::DeviceSocket;
 
 const NONE: u8 = 0;
 const STOP_HOLD: u8 = 1;
@@ -67,7 +76,7 @@ impl RunControl {
     }
 }
 
-/// The motion core's external guidance for one EGM run.
+/// One EGM run: the driver, its device's socket, and what the hook reports of it.
 #[derive(Debug)]
 pub(crate) struct EgmGuidance {
     /// The identity (to tell the registry when the run is over).
@@ -76,6 +85,10 @@ pub(crate) struct EgmGuidance {
     pub name: Arc<str>,
     /// The driver.
     pub driver: EgmDriver,
+    /// Its device's socket (none for the built-in sensor and signals).
+    pub socket: DeviceSocket,
+    /// The executor stepped it (it is the running external guidance).
+    pub stepped: bool,
     /// Requests from the program side.
     pub control: Arc<RunControl>,
     /// MaxSpeedDeviation limited the speed since the hook last looked.
@@ -84,8 +97,33 @@ pub(crate) struct EgmGuidance {
     pub last: Option<EgmTick>,
 }
 
-impl ExternalGuidance for EgmGuidance {
+/// Where the running EGM run lives (see the module docs).
+pub(crate) type RunSlot = Mutex<Option<EgmGuidance>>;
+
+/// The executor's external guidance of the run in a [`RunSlot`].
+pub(crate) struct RunStep(pub Arc<RunSlot>);
+
+impl ExternalGuidance for RunStep {
     fn step(&mut self, now: RobotTime, current: &JointsDeg) -> GuidanceStep {
+        // The hook and the executor run one after the other on this thread; the program side
+        // holds the lock only while the run is not in the executor. So this never fails.
+        let mut slot = match self.0.try_lock() {
+            Ok(slot) => slot,
+            Err(TryLockError::Poisoned(p)) => p.into_inner(),
+            Err(TryLockError::WouldBlock) => return GuidanceStep::Hold,
+        };
+        match slot.as_mut() {
+            Some(run) => run.step(now, current),
+            None => GuidanceStep::Finished,
+        }
+    }
+}
+
+impl EgmGuidance {
+    /// The run's step of the cycle at `now`: the program side's requests, then the driver's
+    /// tick.
+    fn step(&mut self, now: RobotTime, current: &JointsDeg) -> GuidanceStep {
+        self.stepped = true;
         match self.control.take() {
             Some(Request::Stop(mode, ramp)) => self.driver.stop(mode, ramp),
             Some(Request::Halt) => self.driver.halt(),

@@ -36,7 +36,7 @@ fn controller(devices: &[&str]) -> (ControllerHandle, EgmController) {
     let overrides: Vec<_> = devices.iter().map(|d| d.parse().unwrap()).collect();
     let table = DeviceTable::new(None, &overrides).unwrap();
     let setup = EgmSetup {
-        registry: RegistryConfig::new(MocConfig::default(), table),
+        registry: super::registry_config(&MocConfig::default(), &table),
         driver: DriverOptions::default(),
         lockstep: None,
         feed: None,

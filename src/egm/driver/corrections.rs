@@ -9,27 +9,29 @@
 //! if let Some(err) = t.failed { stop the movement: ERR_UDPUC_COMM (41822) }
 //! ```
 
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::event::EgmEvent;
-use crate::egm::geometry::{SignalSource, feedback_in_wobj};
+use crate::egm::geometry::SignalSource;
 use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::path_correction::{SeamProfile, Tracker};
 use crate::egm::registry::{MovePlan, TrackerKind};
-use crate::egm::session::{EgmSession, EgmStats, SourceFilter};
-use crate::egm::types::{
-    EgmMode, ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState,
-    RobotFeedback, Target,
-};
+use crate::egm::session::{EgmSession, EgmStats, Outcome, SourceFilter};
+use crate::egm::types::{EgmMode, Joints, MciState, RapidExecState, Target};
 use crate::robot::{Robot, ToolData, WobjData};
 use crate::signals::SignalTable;
 use crate::time::RobotTime;
 
 use super::delay::DelayLine;
+use super::feedback::tcp_feedback;
 use super::source::{BUILTIN_ADDR, Peer};
-use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, open_session};
+use super::{
+    DatagramMachine, DriverContext, EgmSource, EventQueue, check_options, forward_events,
+    open_session,
+};
 
 /// One correction from the sensor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,7 +118,6 @@ pub struct CorrectionLink {
     failed: bool,
     samples: u32,
     awaiting: bool,
-    now: RobotTime,
     events: EventQueue,
     log: LogRing,
     pending: Option<LogRow>,
@@ -149,9 +150,9 @@ impl CorrectionLink {
             Ok::<_, EgmError>(Box::new(s))
         };
         let feed = match source {
-            EgmSource::Udp { device, transport } => Feed::Session {
-                session: session(transport.remote(), ctx.options.source_filter)?,
-                peer: Peer::Udp(transport),
+            EgmSource::Udp { device, remote } => Feed::Session {
+                session: session(remote, ctx.options.source_filter)?,
+                peer: Peer::external(remote),
                 buf: Vec::with_capacity(512),
                 device,
             },
@@ -193,7 +194,6 @@ impl CorrectionLink {
             failed: false,
             samples: 0,
             awaiting: false,
-            now,
             events: EventQueue::with_capacity(),
             log: LogRing::new(&plan.name, ctx.options.log_capacity),
             pending: None,
@@ -228,28 +228,8 @@ impl CorrectionLink {
         &mut self.log
     }
 
-    /// Lockstep: a message went to an external sensor and no valid reply came yet.
-    pub fn awaiting_reply(&self) -> bool {
-        self.awaiting && !self.failed
-    }
-
-    /// Lockstep: as [`crate::egm::EgmDriver::wait_reply`].
-    pub fn wait_reply(&mut self, timeout: Duration) -> bool {
-        if !self.awaiting_reply() {
-            return false;
-        }
-        self.awaiting = false;
-        match &mut self.feed {
-            Feed::Session { session, peer, .. } => {
-                peer.wait_reply(self.now, timeout, session, &mut self.events)
-            }
-            _ => false,
-        }
-    }
-
     /// One motion tick at `now`.
     pub fn tick(&mut self, now: RobotTime, input: &CorrectionInput<'_>) -> CorrectionTick {
-        self.now = now;
         let measured = self.delay.push(input.commanded);
         if self.failed {
             return CorrectionTick {
@@ -278,9 +258,6 @@ impl CorrectionLink {
                 buf,
                 device,
             } => {
-                if peer.receive(now, session, &mut self.events) {
-                    self.awaiting = false;
-                }
                 session.handle_timeout(now);
                 let correction = session.poll_reference().and_then(|r| match r.target {
                     Target::PathCorr(pc) => Some(Correction {
@@ -303,35 +280,19 @@ impl CorrectionLink {
                     row.recv_time = Some(c.received_at);
                     row.reference = Some(reference_of(c));
                 }
-                let pose = |q: &Joints| {
-                    feedback_in_wobj(&self.robot, q, input.tool, input.wobj)
-                        .ok()
-                        .map(|(pos, orient)| WirePose { pos, orient })
-                        .unwrap_or(WirePose::IDENTITY)
-                };
-                let feedback = RobotFeedback {
-                    joints: measured,
-                    external: ExternalAxes::NONE,
-                    pose: pose(&measured),
-                    time: now,
-                    planned_joints: input.commanded,
-                    planned_external: ExternalAxes::NONE,
-                    planned_pose: pose(&input.commanded),
-                    planned_time: now.saturating_add(self.servo_delay),
-                    motor_state: MotorState::On,
-                    exec_state: RapidExecState::Running,
-                    mci_state: MciState::Running,
-                    convergence_met: false,
-                    utilization: 0.0,
-                    move_index: None,
-                    rapid_to_sensor: None,
-                };
+                let feedback = tcp_feedback(
+                    (&self.robot, input.tool, input.wobj),
+                    now,
+                    (&measured, &input.commanded),
+                    self.servo_delay,
+                    (RapidExecState::Running, MciState::Running),
+                );
                 let sent = !self.failed && session.poll_transmit_into(now, &feedback, buf);
                 if sent {
                     if let Some(e) = peer.send(now, buf, session) {
                         self.events.push(e);
                     }
-                    self.awaiting = peer.transport().is_some();
+                    self.awaiting = peer.is_external();
                     if let Some(done) = self.pending.take() {
                         self.log.push(done);
                     }
@@ -420,6 +381,48 @@ impl CorrectionLink {
             self.log.push(done);
         }
         self.awaiting = false;
+    }
+}
+
+impl DatagramMachine for CorrectionLink {
+    fn handle_datagram(&mut self, now: RobotTime, from: SocketAddr, bytes: &[u8]) -> bool {
+        let Feed::Session { session, .. } = &mut self.feed else {
+            return false;
+        };
+        let accepted = session.handle_datagram(now, from, bytes) == Outcome::Accepted;
+        if accepted {
+            self.awaiting = false;
+        }
+        accepted
+    }
+
+    fn poll_transmit(&mut self, _now: RobotTime) -> Option<(SocketAddr, &[u8])> {
+        match &mut self.feed {
+            Feed::Session { peer, buf, .. } => peer.take_transmit(buf),
+            _ => None,
+        }
+    }
+
+    fn poll_timeout(&self) -> Option<RobotTime> {
+        if self.failed {
+            return None;
+        }
+        match &self.feed {
+            Feed::Session { session, .. } => session.poll_timeout(),
+            Feed::Signals { next, .. } | Feed::Seam { next, .. } => Some(*next),
+        }
+    }
+
+    fn awaiting_reply(&self) -> bool {
+        self.awaiting && !self.failed
+    }
+
+    fn reply_wait_over(&mut self) {
+        self.awaiting = false;
+    }
+
+    fn transport_error(&mut self, event: EgmEvent) {
+        self.events.push(event);
     }
 }
 

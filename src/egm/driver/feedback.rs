@@ -35,7 +35,7 @@ impl EgmDriver {
             self.events.push(e);
         }
         forward_events(session, &mut self.events);
-        self.awaiting = peer.transport().is_some();
+        self.awaiting = peer.is_external();
         if let Some(done) = self.pending.take() {
             self.log.push(done);
         }
@@ -94,5 +94,40 @@ impl EgmDriver {
             None => feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj),
         };
         r.ok().map(|(pos, orient)| WirePose { pos, orient })
+    }
+}
+
+/// The feedback of a position stream or a path-correction link at `now`: the measured
+/// (servo-delayed) and the commanded joints, with the TCP of the tool relative to the work
+/// object for each (identity where it cannot be computed); no convergence, no utilization.
+pub(super) fn tcp_feedback(
+    (robot, tool, wobj): (&Robot, &ToolData, &WobjData),
+    now: RobotTime,
+    (measured, commanded): (&Joints, &Joints),
+    servo_delay: Duration,
+    (exec_state, mci_state): (RapidExecState, MciState),
+) -> RobotFeedback {
+    let pose = |q: &Joints| {
+        feedback_in_wobj(robot, q, tool, wobj)
+            .ok()
+            .map(|(pos, orient)| WirePose { pos, orient })
+            .unwrap_or(WirePose::IDENTITY)
+    };
+    RobotFeedback {
+        joints: *measured,
+        external: ExternalAxes::NONE,
+        pose: pose(measured),
+        time: now,
+        planned_joints: *commanded,
+        planned_external: ExternalAxes::NONE,
+        planned_pose: pose(commanded),
+        planned_time: now.saturating_add(servo_delay),
+        motor_state: MotorState::On,
+        exec_state,
+        mci_state,
+        convergence_met: false,
+        utilization: 0.0,
+        move_index: None,
+        rapid_to_sensor: None,
     }
 }

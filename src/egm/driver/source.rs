@@ -1,7 +1,6 @@
-//! Where a run's or stream's references come from: [`EgmSource`] (opened from a setup's [`SourceSpec`]) and the per-tick message path inside the driver (UDP socket, in-process built-in sensor, or I/O signals).
+//! Where a run's or stream's references come from: [`EgmSource`] (named by a setup's [`SourceSpec`]) and the other end of a session inside the machines (an external sensor whose datagrams the controller's loop carries, or the built-in sensor in process).
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::time::{Duration, Instant};
 
 use crate::egm::EgmError;
 use crate::egm::event::{EgmEvent, EventKind};
@@ -9,27 +8,25 @@ use crate::egm::geometry::SignalSource;
 use crate::egm::path_correction::SeamProfile;
 use crate::egm::registry::SourceSpec;
 use crate::egm::sensor::{BuiltinSensor, SensorConfig, SensorPattern};
-use crate::egm::session::{EgmSession, Outcome};
+use crate::egm::session::EgmSession;
 use crate::signals::SignalKind;
 use crate::time::RobotTime;
-use crate::wire::udp::{DEFAULT_DRAIN_LIMIT, UdpTransport};
-
-use super::EventQueue;
 
 /// The address the in-process sensor's replies come "from" (the session accepts any sender
 /// for a built-in device).
 pub(super) const BUILTIN_ADDR: SocketAddr = SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), 0);
 
-/// An opened data source, ready for [`crate::egm::EgmDriver::start`] or
+/// A data source, ready for [`crate::egm::EgmDriver::start`] or
 /// [`crate::egm::EgmStream::start`].
 #[derive(Debug)]
 pub enum EgmSource {
-    /// A UdpUc device: the socket is bound.
+    /// A UdpUc device. Its socket is the controller's (`wire::udp`); the machines only
+    /// name the remote they talk to.
     Udp {
         /// The device name.
         device: String,
-        /// The socket.
-        transport: UdpTransport,
+        /// The sensor's address.
+        remote: SocketAddr,
     },
     /// The built-in sensor, run in process: every `EgmRobot` is encoded, handed to the
     /// sensor as bytes and its encoded reply fed back to the session — the same bytes as
@@ -59,46 +56,31 @@ pub enum EgmSource {
 }
 
 impl EgmSource {
-    /// Opens `spec`: binds a UdpUc device's socket (Local Port Number, or any free port) as
-    /// [`UdpTransport::for_device`] does.
-    ///
-    /// Error: [`EgmError::DeviceOpen`] (`ERR_UDPUC_COMM`) when the socket cannot be bound.
-    pub fn open(spec: &SourceSpec) -> Result<EgmSource, EgmError> {
+    /// The source `spec` names (no socket: the controller binds the device's socket and
+    /// carries its datagrams).
+    pub fn new(spec: &SourceSpec) -> EgmSource {
         match spec {
-            SourceSpec::Udp {
-                device,
-                remote,
-                local_port,
-            } => {
-                let transport = UdpTransport::for_device(*local_port, *remote).map_err(|e| {
-                    EgmError::DeviceOpen {
-                        device: device.clone(),
-                        local_port: *local_port,
-                        reason: e.to_string(),
-                    }
-                })?;
-                Ok(EgmSource::Udp {
-                    device: device.clone(),
-                    transport,
-                })
-            }
-            SourceSpec::Builtin { device, pattern } => Ok(EgmSource::Builtin {
+            SourceSpec::Udp { device, remote, .. } => EgmSource::Udp {
+                device: device.clone(),
+                remote: *remote,
+            },
+            SourceSpec::Builtin { device, pattern } => EgmSource::Builtin {
                 device: device.clone(),
                 pattern: *pattern,
-            }),
-            SourceSpec::Signals { kind, source } => Ok(EgmSource::Signals {
+            },
+            SourceSpec::Signals { kind, source } => EgmSource::Signals {
                 kind: *kind,
                 source: *source,
-            }),
+            },
             SourceSpec::Ltapp {
                 device,
                 joint_type,
                 seam,
-            } => Ok(EgmSource::Seam {
+            } => EgmSource::Seam {
                 device: device.clone(),
                 joint_type: *joint_type,
                 seam: *seam,
-            }),
+            },
         }
     }
 
@@ -118,18 +100,21 @@ impl EgmSource {
     }
 }
 
-/// The other end of a session.
+/// The other end of a session, as the machine sees it: an external sensor at an address
+/// (the controller's loop carries the datagrams: [`crate::egm::DatagramMachine`]), or the
+/// built-in sensor answering in process.
 #[derive(Debug)]
 pub(super) enum Peer {
-    /// A real socket.
-    Udp(UdpTransport),
+    /// An external sensor at `remote`; `ready` while a datagram waits for
+    /// [`crate::egm::DatagramMachine::poll_transmit`].
+    External { remote: SocketAddr, ready: bool },
     /// The built-in sensor in process (`None` in a stream, which needs no replies).
     Builtin(Option<Box<BuiltinSensor>>),
 }
 
 impl Peer {
-    /// The peer for a UdpUc or built-in source; `pose_origin` fixes the built-in sensor's
-    /// pose origin (see [`BuiltinSensor::set_pose_origin`]).
+    /// The peer for a built-in source; `pose_origin` fixes the built-in sensor's pose origin
+    /// (see [`BuiltinSensor::set_pose_origin`]).
     pub(super) fn builtin(
         device: &str,
         pattern: SensorPattern,
@@ -144,31 +129,17 @@ impl Peer {
         Ok(Peer::Builtin(Some(Box::new(sensor))))
     }
 
-    /// Hands every waiting datagram to the session; returns whether one was accepted.
-    pub(super) fn receive(
-        &mut self,
-        now: RobotTime,
-        session: &mut EgmSession,
-        events: &mut EventQueue,
-    ) -> bool {
-        let Peer::Udp(transport) = self else {
-            return false;
-        };
-        let mut accepted = false;
-        let result = transport.drain(DEFAULT_DRAIN_LIMIT, |src, bytes| {
-            accepted |= session.handle_datagram(now, src, bytes) == Outcome::Accepted;
-        });
-        if let Err(e) = result {
-            events.push(EgmEvent::new(
-                EventKind::SendError,
-                format!("receiving from the UdpUc device failed: {e}"),
-            ));
+    /// The peer of an external sensor at `remote`.
+    pub(super) fn external(remote: SocketAddr) -> Peer {
+        Peer::External {
+            remote,
+            ready: false,
         }
-        accepted
     }
 
-    /// Sends one datagram; the built-in sensor answers at once into the session. Returns an
-    /// event when sending failed or the sensor could not answer.
+    /// One datagram is ready in the machine's buffer: an external peer holds it for the
+    /// controller's loop; the built-in sensor answers at once into the session. Returns an
+    /// event when the sensor could not answer.
     pub(super) fn send(
         &mut self,
         now: RobotTime,
@@ -176,12 +147,10 @@ impl Peer {
         session: &mut EgmSession,
     ) -> Option<EgmEvent> {
         match self {
-            Peer::Udp(transport) => transport.send(datagram).err().map(|e| {
-                EgmEvent::new(
-                    EventKind::SendError,
-                    format!("sending to {} failed: {e}", transport.remote()),
-                )
-            }),
+            Peer::External { ready, .. } => {
+                *ready = true;
+                None
+            }
             Peer::Builtin(None) => None,
             Peer::Builtin(Some(sensor)) => {
                 match sensor.handle_datagram(now.since_start(), datagram) {
@@ -195,48 +164,19 @@ impl Peer {
         }
     }
 
-    /// Lockstep: blocks up to `timeout` (real time) for one valid datagram and hands it to
-    /// the session at `now`; returns whether one was accepted. Only a UDP peer waits.
-    pub(super) fn wait_reply(
-        &mut self,
-        now: RobotTime,
-        timeout: Duration,
-        session: &mut EgmSession,
-        events: &mut EventQueue,
-    ) -> bool {
-        let Peer::Udp(transport) = self else {
-            return false;
-        };
-        let start = Instant::now();
-        let deadline = start.checked_add(timeout).unwrap_or(start);
-        loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            if left.is_zero() {
-                return false;
+    /// The datagram waiting for the loop, once: `(remote, bytes)` of `buf`.
+    pub(super) fn take_transmit<'a>(&mut self, buf: &'a [u8]) -> Option<(SocketAddr, &'a [u8])> {
+        match self {
+            Peer::External { remote, ready } if *ready => {
+                *ready = false;
+                Some((*remote, buf))
             }
-            match transport.recv_timeout(left) {
-                Ok(Some((src, bytes))) => {
-                    if session.handle_datagram(now, src, bytes) == Outcome::Accepted {
-                        return true;
-                    }
-                }
-                Ok(None) => return false,
-                Err(e) => {
-                    events.push(EgmEvent::new(
-                        EventKind::SendError,
-                        format!("receiving from the UdpUc device failed: {e}"),
-                    ));
-                    return false;
-                }
-            }
+            _ => None,
         }
     }
 
-    /// The socket, for lockstep waits.
-    pub(super) fn transport(&mut self) -> Option<&mut UdpTransport> {
-        match self {
-            Peer::Udp(t) => Some(t),
-            Peer::Builtin(_) => None,
-        }
+    /// True for an external sensor (lockstep waits for its replies).
+    pub(super) fn is_external(&self) -> bool {
+        matches!(self, Peer::External { .. })
     }
 }

@@ -1,23 +1,25 @@
 //! A position stream (EGMStreamStart, `\StreamStart`): `EgmRobot` at the sample rate during ordinary RAPID motion, MCI_STOPPED, no replies needed and no comm time-out.
 
+use std::net::SocketAddr;
 use std::time::Duration;
 
 use crate::egm::EgmError;
 use crate::egm::event::EgmEvent;
-use crate::egm::geometry::feedback_in_wobj;
 use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::StreamPlan;
 use crate::egm::sensor::SensorPattern;
-use crate::egm::session::{EgmSession, SourceFilter};
-use crate::egm::types::{
-    ExternalAxes, Joints, MciState, MotorState, Pose as WirePose, RapidExecState, RobotFeedback,
-};
+use crate::egm::session::{EgmSession, Outcome, SourceFilter};
+use crate::egm::types::{Joints, MciState, RapidExecState};
 use crate::robot::{Robot, ToolData, WobjData};
 use crate::time::RobotTime;
 
 use super::delay::DelayLine;
+use super::feedback::tcp_feedback;
 use super::source::{BUILTIN_ADDR, Peer};
-use super::{DriverContext, EgmSource, EventQueue, check_options, forward_events, open_session};
+use super::{
+    DatagramMachine, DriverContext, EgmSource, EventQueue, check_options, forward_events,
+    open_session,
+};
 
 /// The result of one stream tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,15 +64,12 @@ impl EgmStream {
         check_options(instruction, &ctx.options)?;
         let mut pattern = None;
         let (device, peer, remote, filter) = match source {
-            EgmSource::Udp { device, transport } => {
-                let remote = transport.remote();
-                (
-                    device,
-                    Peer::Udp(transport),
-                    remote,
-                    ctx.options.source_filter,
-                )
-            }
+            EgmSource::Udp { device, remote } => (
+                device,
+                Peer::external(remote),
+                remote,
+                ctx.options.source_filter,
+            ),
             EgmSource::Builtin { device, pattern: p } => {
                 pattern = Some(p);
                 (device, Peer::Builtin(None), BUILTIN_ADDR, SourceFilter::Any)
@@ -122,33 +121,17 @@ impl EgmStream {
     /// One tick at `now` with the joints commanded this tick; `exec` is the program state
     /// to report.
     pub fn tick(&mut self, now: RobotTime, commanded: &Joints, exec: RapidExecState) -> StreamTick {
-        // Replies are not needed; read and discard them so the socket never fills up.
-        self.peer.receive(now, &mut self.session, &mut self.events);
+        // Replies are not needed; the loop hands them in so the socket never fills up, and
+        // they are discarded here.
         while self.session.poll_reference().is_some() {}
         let measured = self.delay.push(*commanded);
-        let pose = |q: &Joints| {
-            feedback_in_wobj(&self.robot, q, &self.tool, &self.wobj)
-                .ok()
-                .map(|(pos, orient)| WirePose { pos, orient })
-                .unwrap_or(WirePose::IDENTITY)
-        };
-        let feedback = RobotFeedback {
-            joints: measured,
-            external: ExternalAxes::NONE,
-            pose: pose(&measured),
-            time: now,
-            planned_joints: *commanded,
-            planned_external: ExternalAxes::NONE,
-            planned_pose: pose(commanded),
-            planned_time: now.saturating_add(self.servo_delay),
-            motor_state: MotorState::On,
-            exec_state: exec,
-            mci_state: MciState::Stopped,
-            convergence_met: false,
-            utilization: 0.0,
-            move_index: None,
-            rapid_to_sensor: None,
-        };
+        let feedback = tcp_feedback(
+            (&self.robot, &self.tool, &self.wobj),
+            now,
+            (&measured, commanded),
+            self.servo_delay,
+            (exec, MciState::Stopped),
+        );
         let sent = self
             .session
             .poll_transmit_into(now, &feedback, &mut self.buf);
@@ -195,13 +178,13 @@ impl EgmStream {
     }
 
     /// Ends the stream and gives the device back, e.g. to an EGMRun that takes over the same
-    /// identity (its socket stays bound).
+    /// identity (the controller keeps its socket bound).
     pub fn into_source(mut self) -> EgmSource {
         self.session.stop();
         match self.peer {
-            Peer::Udp(transport) => EgmSource::Udp {
+            Peer::External { remote, .. } => EgmSource::Udp {
                 device: self.device,
-                transport,
+                remote,
             },
             Peer::Builtin(_) => EgmSource::Builtin {
                 device: self.device,
@@ -210,5 +193,30 @@ impl EgmStream {
                     .unwrap_or(SensorPattern::Hold(crate::egm::EgmMode::Joint)),
             },
         }
+    }
+}
+
+impl DatagramMachine for EgmStream {
+    fn handle_datagram(&mut self, now: RobotTime, from: SocketAddr, bytes: &[u8]) -> bool {
+        self.session.handle_datagram(now, from, bytes) == Outcome::Accepted
+    }
+
+    fn poll_transmit(&mut self, _now: RobotTime) -> Option<(SocketAddr, &[u8])> {
+        self.peer.take_transmit(&self.buf)
+    }
+
+    fn poll_timeout(&self) -> Option<RobotTime> {
+        self.session.poll_timeout()
+    }
+
+    /// A stream needs no replies.
+    fn awaiting_reply(&self) -> bool {
+        false
+    }
+
+    fn reply_wait_over(&mut self) {}
+
+    fn transport_error(&mut self, event: EgmEvent) {
+        self.events.push(event);
     }
 }

@@ -7,31 +7,12 @@
 )]
 
 use super::*;
-use crate::config::devices::DeviceTable;
-use crate::config::moc::MocConfig;
-use crate::egm::registry::{
-    ActJoint, ActPose, EgmRegistry, RegistryConfig, RunArgs, SetupSignals, SetupUc,
-};
+use crate::egm::registry::{ActJoint, ActPose, RunArgs, SetupSignals, SetupUc};
+use crate::egm::test_support::{ctx, registry};
 use crate::signals::SignalKind;
 use crate::time::RobotTime;
 
 const START: Joints = [0.0, 0.0, 0.0, 0.0, 30.0, 0.0];
-
-fn ctx(table: Arc<SignalTable>) -> DriverContext {
-    DriverContext {
-        robot: Robot::default(),
-        signals: table,
-        options: DriverOptions::default(),
-        drops: Default::default(),
-    }
-}
-
-fn registry() -> EgmRegistry {
-    EgmRegistry::new(RegistryConfig::new(
-        MocConfig::default(),
-        DeviceTable::new(None, &[]).unwrap(),
-    ))
-}
 
 #[test]
 fn joint_signals_beyond_an_axis_limit_are_refused_and_the_previous_stays() {
@@ -63,7 +44,7 @@ fn joint_signals_beyond_an_axis_limit_are_refused_and_the_previous_stays() {
     table.set(j1, 10.0).unwrap();
     table.set(j2, 5.0).unwrap();
     let ctx = ctx(Arc::clone(&table));
-    let source = EgmSource::open(&plan.source).unwrap();
+    let source = EgmSource::new(&plan.source);
     let mut d = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source, &START).unwrap();
     let mut q = START;
     let tick = Duration::from_millis(4);
@@ -87,7 +68,7 @@ fn joint_signals_beyond_an_axis_limit_are_refused_and_the_previous_stays() {
     assert_eq!(refused.len(), 1, "{events:?}");
     assert!(refused[0].detail.contains("joint 2"), "{}", refused[0]);
     assert!(d.session_stats().is_none() && d.sensor_stats().is_none());
-    assert!(!d.awaiting_reply() && !d.wait_reply(Duration::from_millis(1)));
+    assert!(!d.awaiting_reply() && d.poll_transmit(RobotTime::ZERO).is_none());
     // The log has one row per sample with the (refused) value as read.
     let rows: Vec<LogRow> = std::iter::from_fn(|| d.pop_log()).collect();
     assert_eq!(rows.len(), 700);
@@ -120,7 +101,7 @@ fn start_checks() {
     let plan = reg
         .run_pose(id, &RunArgs::new(StopMode::Hold), [true; 6], None)
         .unwrap();
-    let source = || EgmSource::open(&plan.source).unwrap();
+    let source = || EgmSource::new(&plan.source);
     let err = EgmDriver::start(RobotTime::ZERO, &ctx, &plan, source(), &START).unwrap_err();
     assert!(err.to_string().contains("stationary tool"), "{err}");
     // Start beyond an axis limit, or not finite.

@@ -3,7 +3,7 @@
 use std::net::SocketAddr;
 use std::time::Duration;
 
-use crate::config::moc::ExtMotionProfile;
+use super::configuration::MotionProfile;
 use crate::egm::sensor::{PathCorrProfile, PatternError, SensorPattern};
 use crate::egm::servo::MinMax;
 use crate::egm::types::EgmMode;
@@ -273,6 +273,6 @@ pub(super) fn opt_seconds(
 }
 
 /// The profile's Default Ramp Time.
-pub(super) fn profile_ramp(p: &ExtMotionProfile) -> Duration {
+pub(super) fn profile_ramp(p: &MotionProfile) -> Duration {
     Duration::try_from_secs_f64(p.ramp_time).unwrap_or(crate::egm::servo::DEFAULT_RAMP_TIME)
 }

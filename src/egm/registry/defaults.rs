@@ -19,7 +19,7 @@
 //! | EGMStop `\RampOutTime` | the EGMRun's ramp-out time | rapidvc's choice |
 //!
 //! Profile values themselves ("default": Level 1, ramp 0.5 s, Kp 5, 20 Hz) live in
-//! [`crate::config::moc`].
+//! the controller's configuration (MOC.cfg).
 
 use std::time::Duration;
 

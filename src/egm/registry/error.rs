@@ -8,8 +8,7 @@
 
 use std::time::Duration;
 
-use crate::config::devices::DeviceError;
-use crate::config::moc::UnknownProfile;
+use super::configuration::{DeviceError, UnknownProfile};
 use crate::egm::event::{EgmEvent, EventKind};
 use crate::egm::geometry::GuidanceError;
 use crate::egm::latency::fmt_duration;

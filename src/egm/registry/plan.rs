@@ -3,7 +3,7 @@
 use std::net::SocketAddr;
 use std::time::Duration;
 
-use crate::config::moc::ExtMotionProfile;
+use super::configuration::MotionProfile;
 use crate::egm::geometry::{Convergence, PoseSetup, SignalSource};
 use crate::egm::path_correction::SeamProfile;
 use crate::egm::sensor::SensorPattern;
@@ -83,7 +83,7 @@ pub struct Setup {
     /// `MecUnit`.
     pub mecunit: String,
     /// The External Motion Interface Data profile.
-    pub profile: ExtMotionProfile,
+    pub profile: MotionProfile,
     /// Guidance in joints, pose, or path correction.
     pub mode: EgmMode,
     /// `\APTR` / `\LATR` (path correction).
@@ -163,7 +163,7 @@ pub struct RunPlan {
     /// The data source.
     pub source: SourceSpec,
     /// The motion profile.
-    pub profile: ExtMotionProfile,
+    pub profile: MotionProfile,
     /// `\CommTimeout`.
     pub comm_timeout: Duration,
     /// `\SampleRate` of the activation.
@@ -297,5 +297,5 @@ pub struct MovePlan {
     /// `\CommTimeout` (UdpUc).
     pub comm_timeout: Duration,
     /// The Level 2 profile.
-    pub profile: ExtMotionProfile,
+    pub profile: MotionProfile,
 }

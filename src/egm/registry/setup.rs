@@ -160,9 +160,9 @@ impl EgmRegistry {
         }
     }
 
-    fn profile(&self, instruction: &'static str, name: &str) -> Result<ExtMotionProfile, EgmError> {
+    fn profile(&self, instruction: &'static str, name: &str) -> Result<MotionProfile, EgmError> {
         self.config
-            .moc
+            .profiles
             .profile(name)
             .cloned()
             .map_err(|source| EgmError::UnknownProfile {

@@ -7,20 +7,10 @@
 )]
 
 use super::*;
-use crate::config::devices::DeviceOverride;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::servo::StopMode;
+use crate::egm::test_support::{level_2, registry, registry_with};
 use crate::signals::SignalKind;
-
-fn registry_with(overrides: &[&str]) -> EgmRegistry {
-    let overrides: Vec<DeviceOverride> = overrides.iter().map(|o| o.parse().unwrap()).collect();
-    let devices = DeviceTable::new(None, &overrides).unwrap();
-    EgmRegistry::new(RegistryConfig::new(MocConfig::default(), devices))
-}
-
-fn registry() -> EgmRegistry {
-    registry_with(&[])
-}
 
 fn uc(mode: EgmMode) -> SetupUc {
     SetupUc {
@@ -495,11 +485,9 @@ fn path_correction_needs_a_level_2_profile_50452() {
 
 #[test]
 fn level_2_profile_runs_a_corrected_sequence() {
-    let mut profile = ExtMotionProfile::with_defaults("pathCorr");
-    profile.level = MotionLevel::Path;
-    let moc = moc_with(profile);
-    let devices = DeviceTable::new(None, &[]).unwrap();
-    let mut r = EgmRegistry::new(RegistryConfig::new(moc, devices));
+    let profiles = Profiles::new(vec![level_2("pathCorr")]);
+    let devices = crate::egm::test_support::devices(&["OptSim=ltapp:sine:y=2,z=0.5,period=200"]);
+    let mut r = EgmRegistry::new(RegistryConfig::new(profiles, devices));
     let id = r.get_id("egmId1").unwrap();
     r.setup_ltapp(
         id,
@@ -555,19 +543,6 @@ fn level_2_profile_runs_a_corrected_sequence() {
         )
         .unwrap_err();
     assert_eq!(err.event().number, 90127);
-}
-
-fn moc_with(profile: ExtMotionProfile) -> MocConfig {
-    let text = format!(
-        "MOC:CFG_1.0:6:0::\n#\nEXT_MOTION_DATA:\n\n      -name \"{}\" -ext_motion_level {}\n",
-        profile.name,
-        profile.level.number()
-    );
-    let mut sources = crate::source::SourceMap::new();
-    let mut diags = crate::diag::Diagnostics::new();
-    let id = sources.add("MOC.cfg".to_string(), text.as_str());
-    let file = crate::config::cfg::parse(id, &text, &mut diags).unwrap();
-    crate::config::moc::read(&file, &mut diags)
 }
 
 #[test]

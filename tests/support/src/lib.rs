@@ -5,6 +5,7 @@
 //! - [`csv`], [`summary`], [`view_page`]: reading what a run wrote (traces, logs, the summary
 //!   line, the view page's data);
 //! - [`egm_loop`], [`egm_wire`]: an EGM controller loop over loopback and the sensor's messages;
+//! - [`egm_pair`]: a controller-side EGM machine and a sensor joined in memory, in virtual time;
 //! - [`robot`]: robot fixtures (tools of the manual's examples) and joint assertions;
 //! - [`src_files`]: the crate's own sources, for the tests that read the code (layers, catalogue);
 //! - [`gen_program`]: large valid RAPID programs for the parser's tests and benchmarks;
@@ -15,6 +16,7 @@
 
 pub mod csv;
 pub mod egm_loop;
+pub mod egm_pair;
 pub mod egm_wire;
 pub mod gen_program;
 pub mod procs;
