@@ -42,6 +42,8 @@ const RECORDS: &[(&str, &[(&str, &str)])] = &[
             ("eax_f", "num"),
         ],
     ),
+    // The program displacement and external-axis offsets in force (`C_PROGDISP`).
+    ("progdisp", &[("pdisp", "pose"), ("eoffs", "extjoint")]),
     (
         "robtarget",
         &[
