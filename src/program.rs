@@ -431,7 +431,7 @@ mod tests {
             .map(|d| d.to_string())
             .filter(|d| !d.starts_with("cannot read"))
             .collect();
-        assert_eq!(errors, ["`missing_one` is not supported by rapidvc"]);
+        assert_eq!(errors, ["`missing_one` is not declared"]);
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! `rapidvc::sema::…` code; errors are accumulated, and a program is returned only when
 //! there are none (warnings are allowed).
 
+mod base;
 mod call;
 mod collect;
 mod consteval;

@@ -70,5 +70,5 @@ fn module_tests_pass_on_the_tree_walker() {
         .expect("run rapidvc test");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}");
-    assert!(stdout.ends_with("14 passed, 0 failed\n"), "{stdout}");
+    assert!(stdout.ends_with("15 passed, 0 failed\n"), "{stdout}");
 }

@@ -175,8 +175,12 @@ codes! {
     SemaUndeclared = "rapidvc::sema::undeclared";
     /// A signal argument that names no configured signal.
     SemaUnknownSignal = "rapidvc::sema::unknown_signal";
-    /// A call to an instruction or function nobody declares.
+    /// A call to an instruction or function of base RobotWare that rapidvc does not implement
+    /// (and that the program does not declare).
     SemaUnsupported = "rapidvc::sema::unsupported";
+    /// A call to a routine that is neither declared in the loaded modules nor an instruction
+    /// or function of RAPID (the program's own routine, missing).
+    SemaUnknownRoutine = "rapidvc::sema::unknown_routine";
     /// An instruction, function or data type of a RobotWare option rapidvc does not have
     /// (the option catalogue, `src/sema/options.txt`).
     SemaNeedsOption = "rapidvc::sema::needs_option";

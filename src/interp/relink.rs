@@ -82,6 +82,9 @@ pub(crate) struct Modules {
     pub search: Option<super::builtins::data_search::Search>,
     /// The modules loaded at run time: the host file each came from, and its name.
     pub loaded_from: Vec<(std::path::PathBuf, String)>,
+    /// The values of each run-time module's persistents when it was loaded or last saved
+    /// (module name, values as text), for `UnLoad \ErrIfChanged`.
+    pub saved_pers: Vec<(String, String)>,
 }
 
 /// A module read by `StartLoad`.

@@ -387,7 +387,8 @@ impl Interp {
         if let Some(list) = &h.errnos {
             let mut hit = false;
             for x in list {
-                if self.eval_f64(p, x)? == errno as f64 {
+                let n = self.eval_f64(p, x)?;
+                if n == errno as f64 || n == f64::from(crate::ir::errnum::LONG_JMP_ALL_ERR) {
                     hit = true;
                     break;
                 }

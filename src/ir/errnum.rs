@@ -68,6 +68,7 @@ errs! {
     ERR_CALC_NEG = 1016, "Negative result of a digit-string calculation";
     ERR_CALC_OVERFLOW = 1017, "Result of a digit-string calculation too large";
     ERR_CALC_DIVZERO = 1018, "Division by zero in a digit-string calculation";
+    ERR_NEGARG = 1019, "Negative argument not allowed";
     ERR_NOTPRES = 1101, "Optional parameter not present";
     ERR_FNCNORET = 1102, "Function ended without RETURN";
     ERR_CALLPROC = 1103, "Procedure call error";
@@ -82,6 +83,8 @@ errs! {
     ERR_UNKPROC = 1112, "Unknown procedure";
     ERR_ARGNOTVAR = 1113, "Argument is not a variable";
     ERR_ARGNOTPER = 1114, "Argument is not a persistent";
+    ERR_ARGDUPCND = 1115, "More than one present conditional argument for the same parameter";
+    ERR_EXECPHR = 1116, "An instruction with a placeholder (`<SMT>`, `<EXP>`, …) was executed";
     ERR_LOADED = 1150, "Program module already loaded";
     ERR_SYNTAX = 1151, "Syntax error in the loaded program module";
     ERR_LINKREF = 1152, "Unresolved references in the loaded program module";
@@ -95,6 +98,7 @@ errs! {
     ERR_CNTNOTVAR = 1202, "CONNECT target is not a variable";
     ERR_INOMAX = 1203, "No more interrupt numbers available";
     ERR_UNKINO = 1204, "Unknown interrupt number";
+    ERR_INOISSAFE = 1205, "Interrupt is safe and cannot be disabled";
     ERR_WAIT_MAXTIME = 1301, "Maximum waiting time exceeded";
     ERR_TP_DOBREAK = 1302, "TP read interrupted by a digital output";
     ERR_TP_DIBREAK = 1303, "TP read interrupted by a digital input";
@@ -104,11 +108,36 @@ errs! {
     ERR_UI_INITVALUE = 1307, "Dialog initial value outside its limits";
     ERR_UI_MAXMIN = 1308, "Dialog minimum value greater than its maximum";
     ERR_UI_NOTINT = 1309, "Dialog value is not an integer";
+    ERR_UISHOW_FATAL = 1310, "UIShow could not start the application";
+    ERR_UISHOW_FULL = 1311, "No room on the FlexPendant for another UIShow application";
     ERR_ROBLIMIT = 1401, "Robot position outside its limits";
     ERR_OUTSIDE_REACH = 1402, "Position outside reach";
     ERR_WHLSEARCH = 1403, "No search hit";
     ERR_PATH_STOP = 1404, "Path stopped";
     ERR_SIGSUPSEARCH = 1405, "Search signal already set at the start";
+    ERR_ACC_TOO_LOW = 1406, "Acceleration or deceleration limit too low (PathAccLim, WorldAccLim)";
+    ERR_ALRDY_MOVING = 1407, "The robot is already moving (StartMove, StartMoveRetry)";
+    ERR_AXIS_ACT = 1408, "Axis is not active";
+    ERR_AXIS_IND = 1409, "Axis is not in independent mode";
+    ERR_AXIS_MOVING = 1410, "Axis is moving";
+    ERR_AXIS_PAR = 1411, "Axis parameter not valid for the instruction";
+    ERR_BWDLIMIT = 1412, "Limit of the path StepBwdPath can step back reached";
+    ERR_COLL_STOP = 1413, "Robot stopped by collision detection";
+    ERR_CONC_MAX = 1414, "Too many consecutive motion instructions with \\Conc";
+    ERR_DIPLAG_LIM = 1415, "DipLag too large (TriggSpeed)";
+    ERR_MOTIONSUP = 1416, "Motion supervision stopped the robot";
+    ERR_PERSSUPSEARCH = 1417, "Search persistent already set at the start";
+    ERR_PID_MOVESTOP = 1418, "Process error: the movement was stopped (ProcerrRecovery)";
+    ERR_PID_RAISE_PP = 1419, "Process error raised by ProcerrRecovery";
+    ERR_PROCSIGNAL_OFF = 1420, "Process supervision signal is off (ProcerrRecovery)";
+    ERR_SPEEDLIM_VALUE = 1421, "Speed limit value too low";
+    ERR_STARTMOVE = 1422, "StartMove could not restart the movement";
+    ERR_UNIT_PAR = 1423, "Mechanical unit parameter not valid for the instruction";
+    ERR_WOBJ_MOVING = 1424, "The coordinated work object is moving";
+    ERR_LOADID_FATAL = 1425, "Load identification failed";
+    ERR_LOADID_RETRY = 1426, "Load identification must be repeated";
+    ERR_SYNCMOVEOFF = 1427, "SyncMoveOff time-out (not every task arrived)";
+    ERR_SYNCMOVEON = 1428, "SyncMoveOn time-out (not every task arrived)";
     ERR_PATHDIST = 1440, "Too far from the interrupted path to restart";
     ERR_SPEED_REFRESH_LIM = 1441, "Speed override out of limits";
     ERR_FRAME = 1442, "The positions do not define a frame";
@@ -120,6 +149,12 @@ errs! {
     ERR_SIG_NAME = 1506, "Signal name is not valid";
     ERR_AO_LIM = 1507, "Analog output value outside its limits";
     ERR_GO_LIM = 1508, "Group output value outside its limits";
+    ERR_BUSSTATE = 1509, "I/O bus in error state (IOBusStart)";
+    ERR_IODISABLE = 1510, "Time-out disabling the I/O device (IODisable)";
+    ERR_IOENABLE = 1511, "Time-out enabling the I/O device (IOEnable)";
+    ERR_NAME_INVALID = 1512, "I/O device or bus name not found";
+    ERR_TRUSTLEVEL = 1513, "I/O device cannot be disabled (its trust level)";
+    ERR_CALLIO_INTER = 1514, "IOEnable or IODisable interrupted by another request for the same device";
     ERR_SOCK_CLOSED = 1601, "Socket closed";
     ERR_SOCK_TIMEOUT = 1602, "Socket time-out";
     ERR_FILEOPEN = 1603, "File cannot be opened";
@@ -131,6 +166,7 @@ errs! {
     ERR_RANYBIN_CHK = 1609, "Check sum error in binary data";
     ERR_RCVDATA = 1610, "Data read is not a number";
     ERR_IOERROR = 1611, "Input/output error while loading or saving a program module";
+    ERR_DEV_MAXTIME = 1612, "Time-out reading from a file or serial channel";
     // The socket errors beyond the first two take 1650 on (1603-1649: files).
     ERR_SOCK_ADDR_INVALID = 1650, "Socket address not valid (not an IPv4 address of a reachable host)";
     ERR_SOCK_ADDR_INUSE = 1651, "Socket address and port already in use";
@@ -150,6 +186,8 @@ errs! {
     ERR_TXTNOEXIST = 1807, "Text table or text does not exist";
     ERR_SYMBOL_TYPE = 1808, "Data object of another type";
     ERR_INVDIM = 1809, "Data object of other dimensions";
+    ERR_CFG_INTERNAL = 1810, "Internal configuration parameter cannot be read or written";
+    ERR_SC_WRITE = 1811, "Error sending to the external computer (SCWrite)";
     ERR_WAITSYNCTASK = 1901, "WaitSyncTask time-out (not every task arrived)";
     ERR_RMQ_DIM = 1902, "RAPID message data of other dimensions";
     ERR_RMQ_FULL = 1903, "RAPID message queue of the receiver is full";
@@ -160,7 +198,14 @@ errs! {
     ERR_RMQ_NOMSG = 1908, "No message in the RAPID message queue";
     ERR_RMQ_TIMEOUT = 1909, "No RAPID message arrived in time";
     ERR_RMQ_VALUE = 1910, "RAPID message data of another type";
+    ERR_TASKNAME = 1911, "Task name not found in the system";
+    ERR_NOT_MOVETASK = 1912, "The task is not a motion task";
 }
+
+/// `LONG_JMP_ALL_ERR`: not an error but a wildcard for the list of an `ERROR (…)` handler,
+/// which then takes every error, those passed up from called routines included (ABB's
+/// "error recovery with long jump"). A number no error has, in the routines group.
+pub const LONG_JMP_ALL_ERR: i32 = 1117;
 
 /// The constant with this (case-insensitive) name.
 pub fn by_name(name: &str) -> Option<&'static ErrDef> {
@@ -192,6 +237,7 @@ mod tests {
             assert!(e.num > BOOK_LAST, "{} collides", e.name);
             assert!(e.name.starts_with("ERR_"));
         }
+        assert!(by_num(LONG_JMP_ALL_ERR).is_none());
         assert_eq!(by_name("err_divzero").map(|e| e.num), Some(ERR_DIVZERO));
         assert_eq!(describe(ERR_DIVZERO), "ERR_DIVZERO (1001)");
         assert_eq!(describe(7), "error 7");

@@ -226,6 +226,12 @@ impl<'a> Checker<'a> {
             ));
         }
         self.add_global(pre(
+            "LONG_JMP_ALL_ERR",
+            GlobalOrigin::ErrConst(errnum::LONG_JMP_ALL_ERR),
+            Storage::Const,
+            Ty::NUM,
+        ));
+        self.add_global(pre(
             "pi",
             GlobalOrigin::NumConst(std::f64::consts::PI),
             Storage::Const,

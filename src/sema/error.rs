@@ -339,12 +339,21 @@ impl SemaError {
                     "define `{name}` in EIO.cfg (an EIO_SIGNAL instance) in the configuration directory (--config, default: the program's directory)"
                 )),
             ),
-            K::Unsupported { name, what } => d(
+            K::Unsupported { name, what } if super::base::is_base_routine(name) => d(
                 Code::SemaUnsupported,
                 format!("`{name}` is not supported by rapidvc"),
+                &format!("{what} of base RobotWare that rapidvc does not implement"),
+                Some(format!(
+                    "no routine named `{name}` is declared in the loaded modules either"
+                )),
+            ),
+            // Not ABB's: the program's own routine, missing from the loaded modules.
+            K::Unsupported { name, what } => d(
+                Code::SemaUnknownRoutine,
+                format!("`{name}` is not declared"),
                 &format!("unknown {what}"),
                 Some(format!(
-                    "no routine named `{name}` is declared in the loaded modules, and it is not a built-in rapidvc implements"
+                    "no routine named `{name}` is declared in the loaded modules, and RAPID has no {what} of that name; is a module missing?"
                 )),
             ),
             K::UnknownType { name } => d(

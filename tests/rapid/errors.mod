@@ -23,6 +23,22 @@ MODULE errors
     ENDIF
   ENDPROC
 
+  ! `ERROR (LONG_JMP_ALL_ERR)` takes every error, here one passed up from a called routine,
+  ! and its handler can name the predefined errors of motion as socket servers do.
+  PROC test_long_jmp_all_err()
+    VAR num caught := 0;
+    fails_div 0;
+    Assert caught = 1 \Msg:="the division by zero reached this handler";
+  ERROR (LONG_JMP_ALL_ERR)
+    TEST ERRNO
+    CASE ERR_MOTIONSUP, ERR_COLL_STOP:
+      caught := -1;
+    CASE ERR_DIVZERO:
+      caught := 1;
+    ENDTEST
+    TRYNEXT;
+  ENDPROC
+
   PROC test_trynext()
     VAR num r := 5;
     r := 1 / 0;

@@ -173,6 +173,53 @@ MODULE modules
     TRYNEXT;
   ENDPROC
 
+  ! Save writes a module with the current values of its persistents, as a controller does,
+  ! and UnLoad \ErrIfChanged refuses (ERR_NOTSAVED, the module stays) while they differ from
+  ! the values loaded or last saved.
+  PROC test_save_current_pers()
+    VAR errnum err := 0;
+    VAR string line;
+    write_mod "t_pers", "cell.mod", "cell", "PERS num cn := 1;|PERS string cs;|PROC cb()|cn := cn + 5;|cs := ""ok"";|ENDPROC";
+    Load "HOME:/t_pers/cell.mod";
+    UnLoad \ErrIfChanged, "HOME:/t_pers/cell.mod";
+    Assert err = 0 \Msg:="nothing changed: UnLoad with ErrIfChanged unloads";
+    Assert NOT ModExist("cell");
+    Load "HOME:/t_pers/cell.mod";
+    %"cb"%;
+    UnLoad \ErrIfChanged, "HOME:/t_pers/cell.mod";
+    Assert err = ERR_NOTSAVED;
+    Assert ModExist("cell");
+    err := 0;
+    Save "cell" \FilePath:="HOME:/t_pers/cell.mod";
+    Open "HOME:/t_pers/cell.mod", f \Read;
+    line := ReadStr(f);
+    Assert line = "MODULE cell";
+    line := ReadStr(f);
+    Assert line = "PERS num cn := 6;";
+    line := ReadStr(f);
+    Assert line = "PERS string cs := ""ok"";";
+    line := ReadStr(f);
+    Assert line = "PROC cb()" \Msg:="the code stays as it was";
+    Close f;
+    UnLoad \ErrIfChanged, "HOME:/t_pers/cell.mod";
+    Assert err = 0 \Msg:="saved: UnLoad with ErrIfChanged unloads";
+    Assert NOT ModExist("cell");
+    ! Loaded again it starts from the saved values; UnLoad \Save writes the new ones.
+    Load "HOME:/t_pers/cell.mod";
+    %"cb"%;
+    UnLoad \Save, "HOME:/t_pers/cell.mod";
+    Open "HOME:/t_pers/cell.mod", f \Read;
+    line := ReadStr(f);
+    line := ReadStr(f);
+    Close f;
+    Assert line = "PERS num cn := 11;";
+    RemoveFile "HOME:/t_pers/cell.mod";
+    RemoveDir "HOME:/t_pers";
+  ERROR
+    err := ERRNO;
+    TRYNEXT;
+  ENDPROC
+
   ! A module cannot unload itself while its routine runs (ERR_UNLOAD); the loaded module
   ! reaches this module's data, and a runtime error in it is handled by its caller here.
   PROC test_unload_running_module()

@@ -13,6 +13,15 @@ MODULE system
   VAR num trap_level := -1;
   VAR num undo_saw := -1;
   VAR intnum timer_int;
+  ! `TASK VAR` and `TASK CONST`, as a controller backup declares them in a system module:
+  ! plain task data.
+  TASK VAR num task_counter := 1;
+  TASK CONST num TASK_STEP := 2;
+
+  PROC test_task_var_and_const()
+    task_counter := task_counter + TASK_STEP;
+    Assert task_counter >= 3;
+  ENDPROC
 
   ! CDate and CTime examples: the date and time as text.
   PROC test_cdate_ctime()

@@ -18,18 +18,24 @@
 //!   references, so `\CheckRef` changes nothing and `CheckProgRef` always succeeds.
 //! * A module cannot be unloaded while one of its routines runs or one of its TRAPs is
 //!   connected (`ERR_UNLOAD`).
-//! * `Save` writes the module's text as it was loaded (the program's text never changes
-//!   while it runs); current values of its persistents are not written into it.
-//!   `\ErrIfChanged` never raises `ERR_NOTSAVED` for the same reason.
+//! * `Save` (and `UnLoad \Save`) writes the module as a controller does: its text as
+//!   loaded, with the initial value of each of its `PERS` declarations replaced by the
+//!   persistent's current value (`PERS num n := 1;` becomes `PERS num n := 7;`; one
+//!   declared without a value gets ` := value`). Routines, comments and layout stay as
+//!   they were.
+//! * `UnLoad \ErrIfChanged` raises `ERR_NOTSAVED` (and leaves the module loaded) when a
+//!   persistent of the module changed since it was loaded or last saved; the module's code
+//!   cannot change while it runs, so its persistents are what can.
 
 use std::path::PathBuf;
 
 use super::{Ctx, Registry};
 use crate::interp::errnum;
 use crate::interp::error::Exec;
+use crate::interp::pers;
 use crate::interp::relink::{LinkError, NewModule, Session};
 use crate::interp::value::Value;
-use crate::ir::RoutineKind;
+use crate::ir::{GlobalOrigin, RoutineKind, Storage};
 
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
@@ -101,6 +107,25 @@ pub(super) fn register(r: &mut Registry) {
         |cx| {
             cx.it.loader_or(cx.span, "UnLoad")?;
             let path = full_path(cx, 2, 3)?;
+            if cx.present(0) {
+                let name = loaded_from(cx, &path)?;
+                let (_, now) = text_now(cx, &name)?;
+                let then = cx
+                    .it
+                    .modules
+                    .saved_pers
+                    .iter()
+                    .find(|(n, _)| n.eq_ignore_ascii_case(&name))
+                    .map(|(_, v)| v.as_str());
+                if then.is_some_and(|t| t != now) {
+                    return Err(cx.error(
+                        errnum::ERR_NOTSAVED,
+                        format!(
+                            "module `{name}` changed since it was loaded or saved (its persistents have other values); save it first or unload it without \\ErrIfChanged"
+                        ),
+                    ));
+                }
+            }
             if cx.present(1) {
                 let name = loaded_from(cx, &path)?;
                 save(cx, &name, &path)?;
@@ -266,6 +291,8 @@ fn link(cx: &mut Ctx<'_>, s: &Session) -> Exec<Value> {
         }
         return Err(link_error(cx, e));
     }
+    let (_, values) = text_now(cx, &name)?;
+    cx.it.modules.saved_pers.push((name.clone(), values));
     cx.it.modules.loaded_from.push((host, name));
     Ok(Value::Absent)
 }
@@ -367,21 +394,103 @@ fn remove(cx: &mut Ctx<'_>, name: &str) -> Exec<Value> {
         .modules
         .loaded_from
         .retain(|(_, n)| !n.eq_ignore_ascii_case(name));
+    cx.it
+        .modules
+        .saved_pers
+        .retain(|(n, _)| !n.eq_ignore_ascii_case(name));
     Ok(Value::Absent)
 }
 
-/// Write module `name` to controller path `path`.
-fn save(cx: &mut Ctx<'_>, name: &str, path: &str) -> Exec<()> {
-    let Some(file) = cx.it.modules.loader.as_ref().and_then(|l| l.module(name)) else {
+/// Module `name` as `Save` writes it (its text with the current values of its persistents),
+/// and those values alone as text (to tell whether they changed).
+fn text_now(cx: &Ctx<'_>, name: &str) -> Exec<(String, String)> {
+    let Some(loader) = cx.it.modules.loader.as_ref() else {
         return Err(cx.error(errnum::ERR_MODULE, format!("no module `{name}`")));
     };
+    let Some(file) = loader.module(name) else {
+        return Err(cx.error(errnum::ERR_MODULE, format!("no module `{name}`")));
+    };
+    let prog = &cx.it.prog;
+    let Some(mid) = prog
+        .modules
+        .iter()
+        .position(|m| m.name.eq_ignore_ascii_case(name))
+    else {
+        return Err(cx.error(errnum::ERR_MODULE, format!("no module `{name}`")));
+    };
+    // (start, end, replacement) in the text the declarations were read from.
+    let mut edits: Vec<(usize, usize, String)> = Vec::new();
+    let mut values = String::new();
+    let mut base: Option<std::sync::Arc<str>> = None;
+    for (i, g) in prog.globals.iter().enumerate() {
+        let in_module = matches!(g.origin, GlobalOrigin::Module(m) if m.0 as usize == mid);
+        if !in_module || g.storage != Storage::Pers {
+            continue;
+        }
+        let Some(value) = cx.it.globals.get(i) else {
+            continue;
+        };
+        let text = pers::to_text(value);
+        values.push_str(&g.name);
+        values.push('=');
+        values.push_str(&text);
+        values.push('\n');
+        let source = &loader.sources().get(g.span.source).text;
+        if base
+            .as_ref()
+            .is_some_and(|b| !std::sync::Arc::ptr_eq(b, source))
+        {
+            // Declarations from two texts: not one module file; keep the text as loaded.
+            return Ok((file.text.to_string(), values));
+        }
+        base = Some(source.clone());
+        let edit = match &g.init {
+            Some(init) => Some((init.span.start as usize, init.span.end as usize, text)),
+            // `PERS num n;` gets its value before the `;`.
+            None => {
+                let decl = source.get(g.span.start as usize..g.span.end as usize);
+                decl.and_then(|d| d.trim_end().strip_suffix(';'))
+                    .map(|d| g.span.start as usize + d.trim_end().len())
+                    .map(|at| (at, at, format!(" := {text}")))
+            }
+        };
+        edits.extend(edit);
+    }
+    let Some(base) = base else {
+        return Ok((file.text.to_string(), values));
+    };
+    edits.sort_by_key(|e| e.0);
+    let mut out = String::with_capacity(base.len());
+    let mut at = 0;
+    for (start, end, text) in edits {
+        let Some(kept) = base.get(at..start).filter(|_| end >= start) else {
+            return Ok((file.text.to_string(), values));
+        };
+        out.push_str(kept);
+        out.push_str(&text);
+        at = end;
+    }
+    out.push_str(base.get(at..).unwrap_or(""));
+    Ok((out, values))
+}
+
+/// Write module `name` to controller path `path`, with the current values of its
+/// persistents.
+fn save(cx: &mut Ctx<'_>, name: &str, path: &str) -> Exec<()> {
+    let (text, values) = text_now(cx, name)?;
     let host = host_path(cx, path)?;
-    std::fs::write(&host, file.text.as_bytes()).map_err(|e| {
+    std::fs::write(&host, text.as_bytes()).map_err(|e| {
         cx.error(
             errnum::ERR_IOERROR,
             format!("module `{name}` cannot be written to `{path}`: {e}"),
         )
-    })
+    })?;
+    let saved = &mut cx.it.modules.saved_pers;
+    match saved.iter_mut().find(|(n, _)| n.eq_ignore_ascii_case(name)) {
+        Some((_, v)) => *v = values,
+        None => saved.push((name.to_string(), values)),
+    }
+    Ok(())
 }
 
 /// `CallByVar Name, Number`: calls the procedure `Name` followed by the number, e.g.

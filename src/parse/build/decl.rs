@@ -12,7 +12,7 @@ impl Builder<'_, '_> {
     pub(crate) fn data_decl(&mut self, p: Pair<'_>) -> Option<DataDecl> {
         let span = self.span(&p);
         let mut local = false;
-        let mut task = None;
+        let mut task = false;
         let mut storage = Storage::Var;
         // The type, then the name.
         let mut ty: Option<Ident> = None;
@@ -22,7 +22,7 @@ impl Builder<'_, '_> {
         for item in p.into_inner() {
             match item.as_rule() {
                 Rule::kw_local => local = true,
-                Rule::kw_task => task = Some(self.span(&item)),
+                Rule::kw_task => task = true,
                 Rule::kw_var => storage = Storage::Var,
                 Rule::kw_pers => storage = Storage::Pers,
                 Rule::kw_const => storage = Storage::Const,
@@ -33,18 +33,12 @@ impl Builder<'_, '_> {
                 _ => {}
             }
         }
-        if let Some(task_span) = task
-            && storage != Storage::Pers
-        {
-            self.error(ParseErrorKind::InvalidModifier {
-                span: task_span,
-                keyword: "TASK".into(),
-                help: "`TASK` applies only to PERS data (`TASK PERS type name := value;`)",
-            });
-        }
+        // `TASK VAR` and `TASK CONST` (seen in controller backups) say what VAR and CONST
+        // data are anyway: one object per task. They are accepted at module level; in a
+        // routine the caller reports `TASK`.
         Some(DataDecl {
             local,
-            task: task.is_some(),
+            task,
             storage,
             ty: ty?,
             name: name?,

@@ -349,7 +349,13 @@ impl Builder<'_, '_> {
                 help: "LOCAL is only allowed on module-level data and routines",
             });
         }
-        // (`TASK` on VAR or CONST is reported with the declaration itself.)
+        if d.task {
+            self.error(ParseErrorKind::InvalidModifier {
+                span: word_span("TASK"),
+                keyword: "TASK".into(),
+                help: "TASK is only allowed on module-level data",
+            });
+        }
         if d.storage == Storage::Pers {
             self.error(ParseErrorKind::InvalidModifier {
                 span: word_span("PERS"),

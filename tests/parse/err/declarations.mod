@@ -1,5 +1,5 @@
 MODULE BadDecls
-  TASK VAR num notPers := 1;
+  ! TASK VAR at module level is valid (tests/parse/ok/declarations.mod); in a routine it is not.
   VAR num tooMany{2, 2, 2, 2};
   PROC main(num open{*,*,*,*})
     LOCAL VAR num hidden;

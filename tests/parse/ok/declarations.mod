@@ -21,6 +21,9 @@ MODULE Decls
   TASK PERS tooldata gripTool := [TRUE, [[0, 0, 150], [1, 0, 0, 0]],
     [2.5, [0, 0, 60], [1, 0, 0, 0], 0, 0, 0]];
   LOCAL TASK PERS num perTask := 1;
+  ! As controller backups write them: the same as plain VAR and CONST.
+  TASK VAR num taskVar := 2;
+  TASK CONST num taskConst := 3;
   CONST num row{3} := [1, 2, 3];
   CONST num grid{2, 3} := [[1, 2, 3],
                            ! a comment inside a multi-line aggregate
