@@ -267,25 +267,27 @@ pub enum StmtKind {
         /// Procedure name.
         name: Ident,
         /// Arguments in written order.
-        args: Vec<Arg>,
+        args: Box<[Arg]>,
     },
     /// `% expr % arg, …;` — late-bound procedure call.
     LateCall {
         /// Expression giving the procedure name.
         name: Box<Expr>,
         /// Arguments.
-        args: Vec<Arg>,
+        args: Box<[Arg]>,
     },
-    /// `IF … THEN … ELSEIF … ELSE … ENDIF`.
+    /// `IF … THEN … ELSEIF … ELSE … ENDIF`. (Finished lists are boxed slices, 16 bytes
+    /// each rather than a vector's 24: this is the largest statement shape, and every
+    /// statement takes its size.)
     If {
         /// Condition.
         cond: Box<Expr>,
         /// THEN part.
-        then_body: Vec<Stmt>,
+        then_body: Box<[Stmt]>,
         /// ELSEIF parts in order.
-        elseifs: Vec<(Expr, Vec<Stmt>)>,
+        elseifs: Box<[(Expr, Vec<Stmt>)]>,
         /// ELSE part.
-        else_body: Option<Vec<Stmt>>,
+        else_body: Option<Box<[Stmt]>>,
     },
     /// Compact `IF cond stmt;`.
     CompactIf {
@@ -299,7 +301,7 @@ pub enum StmtKind {
         /// Condition.
         cond: Box<Expr>,
         /// Body.
-        body: Vec<Stmt>,
+        body: Box<[Stmt]>,
     },
     /// `FOR var FROM a TO b [STEP s] DO … ENDFOR`.
     For {
@@ -312,16 +314,16 @@ pub enum StmtKind {
         /// Step.
         step: Option<Box<Expr>>,
         /// Body.
-        body: Vec<Stmt>,
+        body: Box<[Stmt]>,
     },
     /// `TEST e CASE …: … DEFAULT: … ENDTEST`.
     Test {
         /// The tested value.
         subject: Box<Expr>,
         /// CASE clauses in order.
-        cases: Vec<TestCase>,
+        cases: Box<[TestCase]>,
         /// DEFAULT clause.
-        default: Option<Vec<Stmt>>,
+        default: Option<Box<[Stmt]>>,
     },
     /// `name:` label.
     Label(Ident),
@@ -422,8 +424,9 @@ pub enum ExprKind {
     Component {
         /// Record value.
         base: Box<Expr>,
-        /// Component name.
-        field: Ident,
+        /// Component name (boxed: an inline name would make every expression 8 bytes
+        /// larger, and component access is rare next to names and literals).
+        field: Box<Ident>,
     },
     /// `base{i[,j[,k]]}`.
     Index {
@@ -437,7 +440,7 @@ pub enum ExprKind {
         /// Function name.
         name: Box<Ident>,
         /// Arguments.
-        args: Vec<Arg>,
+        args: Box<[Arg]>,
     },
     /// `[e1, e2, …]` — record or array aggregate, typed from context.
     Aggregate(Vec<Expr>),
@@ -639,5 +642,26 @@ impl Placeholder {
             Placeholder::Arg => "<ARG>",
             Placeholder::Id => "<ID>",
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A large module holds millions of these nodes: a field that makes them larger shows up
+    /// as memory (`cargo bench --bench check_memory`). Box rare large shapes instead.
+    #[test]
+    fn node_sizes_do_not_grow() {
+        assert!(size_of::<Span>() <= 12, "Span {}", size_of::<Span>());
+        assert!(size_of::<Ident>() <= 32, "Ident {}", size_of::<Ident>());
+        assert!(size_of::<Expr>() <= 56, "Expr {}", size_of::<Expr>());
+        assert!(size_of::<Arg>() <= 72, "Arg {}", size_of::<Arg>());
+        assert!(size_of::<Stmt>() <= 80, "Stmt {}", size_of::<Stmt>());
+        assert!(
+            size_of::<ModuleItem>() <= 160,
+            "ModuleItem {}",
+            size_of::<ModuleItem>()
+        );
     }
 }

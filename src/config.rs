@@ -29,7 +29,7 @@ pub use error::ConfigError;
 
 use crate::diag::Diagnostics;
 use crate::signals::{IoError, SignalDef, SignalTable, builtin_signals, merge_defs};
-use crate::source::{SourceMap, decode_bytes};
+use crate::source::{SourceMap, decode_owned};
 
 /// Everything read from a configuration directory.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -123,7 +123,7 @@ pub fn load_file(
             return None;
         }
     };
-    let text = decode_bytes(&bytes);
+    let text = decode_owned(bytes);
     let id = sources.add(path.display().to_string(), text.as_str());
     let file = cfg::parse(id, &text, diags)?;
     if !file.domain.eq_ignore_ascii_case(domain) {

@@ -202,12 +202,24 @@ fn line_starts(text: &str) -> Vec<u32> {
     starts
 }
 
-/// Decode file bytes: UTF-8 when valid, otherwise Latin-1 (each byte one char), as RAPID
-/// files written by older controllers are ISO-8859-1.
+/// [`decode_owned`] of a copy of `bytes`.
 pub fn decode_bytes(bytes: &[u8]) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => s.strip_prefix('\u{feff}').unwrap_or(s).to_string(),
-        Err(_) => bytes.iter().map(|&b| b as char).collect(),
+    decode_owned(bytes.to_vec())
+}
+
+/// Decode file bytes: UTF-8 when valid, otherwise Latin-1 (each byte one char), as RAPID
+/// files written by older controllers are ISO-8859-1. Valid UTF-8 becomes the text in the
+/// bytes' own buffer (a byte-order mark is removed in place), so reading a file holds one
+/// copy of it; only Latin-1 needs a new buffer.
+pub fn decode_owned(bytes: Vec<u8>) -> String {
+    match String::from_utf8(bytes) {
+        Ok(mut s) => {
+            if s.starts_with('\u{feff}') {
+                s.drain(..'\u{feff}'.len_utf8());
+            }
+            s
+        }
+        Err(e) => e.as_bytes().iter().map(|&b| b as char).collect(),
     }
 }
 
@@ -305,7 +317,12 @@ mod tests {
         assert_eq!(f.line_col(5), (2, 2));
         assert_eq!(f.line_text(1), "ab");
         assert_eq!(f.line_text(3), "ef");
-        assert_eq!(decode_bytes(b"x\xe9y"), "x\u{e9}y");
+        assert_eq!(decode_owned(b"x\xe9y".to_vec()), "x\u{e9}y");
+        assert_eq!(decode_owned(b"\xef\xbb\xbfa\xc3\xa9".to_vec()), "a\u{e9}");
+        assert_eq!(
+            decode_bytes(b"\xef\xbb\xbfx\xe9"),
+            "\u{ef}\u{bb}\u{bf}x\u{e9}"
+        );
     }
 
     #[test]

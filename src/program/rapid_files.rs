@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::source::{SourceId, SourceMap, decode_bytes};
+use crate::source::{SourceId, SourceMap, decode_owned};
 
 /// File extensions of RAPID sources, compared case-insensitively.
 pub const RAPID_EXTENSIONS: [&str; 4] = ["mod", "modx", "sys", "prg"];
@@ -135,7 +135,7 @@ pub fn load_file(map: &mut SourceMap, path: &Path) -> Result<SourceId, LoadError
             path: path.to_path_buf(),
         });
     }
-    let text = decode_bytes(&bytes);
+    let text = decode_owned(bytes);
     Ok(map.add(path.display().to_string(), text))
 }
 

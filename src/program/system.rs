@@ -180,7 +180,7 @@ fn backinfo_tasks(backup: &Path) -> Vec<(usize, String)> {
     let Ok(bytes) = std::fs::read(&info) else {
         return Vec::new();
     };
-    let text = crate::source::decode_bytes(&bytes);
+    let text = crate::source::decode_owned(bytes);
     let mut out = Vec::new();
     for line in text.lines() {
         let Some(rest) = line.trim().strip_prefix(">>TASK") else {

@@ -225,7 +225,7 @@ impl Builder<'_, '_> {
                     Expr {
                         kind: ExprKind::Component {
                             base: Box::new(base),
-                            field,
+                            field: Box::new(field),
                         },
                         span,
                     },
@@ -303,7 +303,7 @@ impl Builder<'_, '_> {
         &mut self,
         pairs: impl IntoIterator<Item = Pair<'i>>,
         depth: usize,
-    ) -> Option<(Vec<Arg>, usize)> {
+    ) -> Option<(Box<[Arg]>, usize)> {
         let pairs = pairs.into_iter();
         let mut out = Vec::with_capacity(pairs.size_hint().0);
         let mut max = 0;
@@ -374,14 +374,14 @@ impl Builder<'_, '_> {
             max = max.max(d);
             out.push(Arg { kind, span });
         }
-        Some((out, max))
+        Some((out.into_boxed_slice(), max))
     }
 
     /// Arguments of a procedure call statement.
     pub(crate) fn call_args<'i>(
         &mut self,
         pairs: impl IntoIterator<Item = Pair<'i>>,
-    ) -> Option<Vec<Arg>> {
+    ) -> Option<Box<[Arg]>> {
         self.args(pairs, 0).map(|(a, _)| a)
     }
 }

@@ -171,7 +171,7 @@ impl Builder<'_, '_> {
         opener: &Pair<'i>,
         inner: &mut impl Iterator<Item = Pair<'i>>,
         keyword: &'static str,
-    ) -> Vec<Stmt> {
+    ) -> Box<[Stmt]> {
         let mut body = Vec::with_capacity(inner.size_hint().0);
         for p in inner {
             match p.as_rule() {
@@ -180,7 +180,7 @@ impl Builder<'_, '_> {
                 _ => {}
             }
         }
-        body
+        body.into_boxed_slice()
     }
 
     fn if_stmt<'i>(
@@ -236,9 +236,9 @@ impl Builder<'_, '_> {
         }
         Some(StmtKind::If {
             cond: Box::new(cond),
-            then_body,
-            elseifs,
-            else_body,
+            then_body: then_body.into_boxed_slice(),
+            elseifs: elseifs.into_boxed_slice(),
+            else_body: else_body.map(Vec::into_boxed_slice),
         })
     }
 
@@ -295,8 +295,8 @@ impl Builder<'_, '_> {
         }
         Some(StmtKind::Test {
             subject: Box::new(subject),
-            cases,
-            default,
+            cases: cases.into_boxed_slice(),
+            default: default.map(Vec::into_boxed_slice),
         })
     }
 }
