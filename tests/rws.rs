@@ -7,6 +7,7 @@
 //! on every socket; the controller is killed when its guard is dropped).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
 
+use rapidvc_testkit::procs::wait_until;
 use rapidvc_testkit::rws_http;
 use rapidvc_testkit::serve::Serve;
 
@@ -494,11 +495,12 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
             .unwrap()
     };
     let wait_for = |c: &mut Client, what: &str, ok: &dyn Fn(&mut Client) -> bool| {
-        let t0 = Instant::now();
-        while !ok(c) {
-            assert!(t0.elapsed() < Duration::from_secs(10), "{what}");
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_until(
+            Duration::from_secs(10),
+            Duration::from_millis(50),
+            what,
+            || ok(c),
+        );
     };
     assert_eq!(cycles(&mut c), 0.0, "nothing runs before a start");
     assert_eq!(
@@ -630,11 +632,12 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
             .status,
         204
     );
-    let t0 = Instant::now();
-    while j1(&mut c) < 3.0 {
-        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    wait_until(
+        Duration::from_secs(10),
+        Duration::from_millis(20),
+        "the robot moves",
+        || j1(&mut c) >= 3.0,
+    );
     assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
     std::thread::sleep(Duration::from_millis(500));
     let held = j1(&mut c);
@@ -647,20 +650,23 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
             .status,
         204
     );
-    let t0 = Instant::now();
-    while !reached(&mut c) {
-        assert!(t0.elapsed() < Duration::from_secs(15), "the move ends");
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    wait_until(
+        Duration::from_secs(15),
+        Duration::from_millis(50),
+        "the move ends",
+        || reached(&mut c),
+    );
     assert!((j1(&mut c) - 30.0).abs() < 0.01, "at the target");
     // A single cycle ended: execution stopped.
-    let t0 = Instant::now();
-    while c.get("/rw/rapid/execution?json=1").json()["_embedded"]["_state"][0]["ctrlexecstate"]
-        != "stopped"
-    {
-        assert!(t0.elapsed() < Duration::from_secs(5), "stopped after once");
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    wait_until(
+        Duration::from_secs(5),
+        Duration::from_millis(20),
+        "stopped after once",
+        || {
+            c.get("/rw/rapid/execution?json=1").json()["_embedded"]["_state"][0]["ctrlexecstate"]
+                == "stopped"
+        },
+    );
 }
 
 #[test]

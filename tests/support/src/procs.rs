@@ -249,3 +249,13 @@ pub fn golden_args(path: &Path) -> Vec<String> {
     args.push(name.to_string());
     args
 }
+
+/// Poll `done` every `every` until it holds; panics naming `what` once `limit` has passed
+/// (tests that wait for a live controller always end by themselves).
+pub fn wait_until(limit: Duration, every: Duration, what: &str, mut done: impl FnMut() -> bool) {
+    let t0 = Instant::now();
+    while !done() {
+        assert!(t0.elapsed() < limit, "timed out after {limit:?}: {what}");
+        std::thread::sleep(every);
+    }
+}
