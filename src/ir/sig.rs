@@ -15,7 +15,7 @@ use std::fmt;
 pub enum SigMode {
     /// By value.
     In,
-    /// INOUT: a variable or an entire persistent.
+    /// INOUT: a variable, or a persistent or a part of one.
     InOut,
     /// VAR: a variable.
     Var,

@@ -412,9 +412,10 @@ impl Checker<'_> {
                     (_, Obj::Var) => p.mode != PMode::Pers,
                     (_, Obj::RefParam(ParamMode::Var)) => p.mode != PMode::Pers,
                     (_, Obj::RefParam(ParamMode::InOut)) => p.mode != PMode::Pers || info.whole,
-                    (PMode::Pers | PMode::InOut, Obj::Pers | Obj::RefParam(ParamMode::Pers)) => {
-                        info.whole
-                    }
+                    // A part of a persistent may be passed INOUT (`Incr counts{i};`): real
+                    // controller backups do it (docs/rapid.md, "Routines and calls").
+                    (PMode::InOut, Obj::Pers | Obj::RefParam(ParamMode::Pers)) => true,
+                    (PMode::Pers, Obj::Pers | Obj::RefParam(ParamMode::Pers)) => info.whole,
                     // Predefined data is passed on as a persistent (`MoveL p, v100, fine,
                     // tool0`, `MoveHome tool0;`); only assigning it directly is refused.
                     (PMode::Pers | PMode::InOut, Obj::ReadOnlyPers) => info.whole,
