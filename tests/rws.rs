@@ -26,6 +26,31 @@ fn login(srv: &Serve) -> Client {
     c
 }
 
+/// The first `_state` entry of a resource in the JSON representation.
+fn state(c: &mut Client, path: &str) -> serde_json::Value {
+    let sep = if path.contains('?') { '&' } else { '?' };
+    c.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
+}
+
+/// Joint 1 of the robot, in degrees, as served.
+fn j1(c: &mut Client) -> f64 {
+    state(c, "/rw/motionsystem/mechunits/ROB_1/jointtarget")["rax_1"]
+        .as_str()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+/// The `moves` program's `reached` flag.
+fn reached(c: &mut Client) -> bool {
+    state(c, "/rw/rapid/symbol/data/RAPID/T_ROB1/reached")["value"] == "TRUE"
+}
+
+/// True when RAPID execution is stopped.
+fn stopped(c: &mut Client) -> bool {
+    state(c, "/rw/rapid/execution")["ctrlexecstate"] == "stopped"
+}
+
 #[test]
 fn no_resource_answers_without_login() {
     let srv = start("nologin");
@@ -612,21 +637,6 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
         &["--entry", "moves"],
     );
     let mut c = login(&srv);
-    let j1 = |c: &mut Client| -> f64 {
-        let v = c
-            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
-            .json();
-        v["_embedded"]["_state"][0]["rax_1"]
-            .as_str()
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    let reached = |c: &mut Client| {
-        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
-            .json()["_embedded"]["_state"][0]["value"]
-            == "TRUE"
-    };
     assert_eq!(
         c.post("/rw/rapid/execution?action=start", "cycle=once")
             .status,
@@ -669,10 +679,7 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
         Duration::from_secs(5),
         Duration::from_millis(20),
         "stopped after once",
-        || {
-            c.get("/rw/rapid/execution?json=1").json()["_embedded"]["_state"][0]["ctrlexecstate"]
-                == "stopped"
-        },
+        || stopped(&mut c),
     );
 }
 
@@ -691,20 +698,12 @@ fn the_speed_ratio_scales_the_moves_planned_after_it() {
                 .status,
             204
         );
-        let t0 = Instant::now();
-        loop {
-            let v = c
-                .get("/rw/rapid/symbol/data/RAPID/T_ROB1/reached?json=1")
-                .json();
-            let e = c.get("/rw/rapid/execution?json=1").json();
-            if v["_embedded"]["_state"][0]["value"] == "TRUE"
-                && e["_embedded"]["_state"][0]["ctrlexecstate"] == "stopped"
-            {
-                break;
-            }
-            assert!(t0.elapsed() < Duration::from_secs(30), "the run ends");
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        wait_until(
+            Duration::from_secs(30),
+            Duration::from_millis(50),
+            "the run ends",
+            || reached(c) && stopped(c),
+        );
         c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/move_time?json=1")
             .json()["_embedded"]["_state"][0]["value"]
             .as_str()
@@ -741,22 +740,12 @@ fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
             .status,
         204
     );
-    let t0 = Instant::now();
-    loop {
-        let v = c
-            .get("/rw/motionsystem/mechunits/ROB_1/jointtarget?json=1")
-            .json();
-        let j1: f64 = v["_embedded"]["_state"][0]["rax_1"]
-            .as_str()
-            .unwrap()
-            .parse()
-            .unwrap();
-        if j1 > 3.0 {
-            break;
-        }
-        assert!(t0.elapsed() < Duration::from_secs(10), "the robot moves");
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    wait_until(
+        Duration::from_secs(10),
+        Duration::from_millis(20),
+        "the robot moves",
+        || j1(&mut c) > 3.0,
+    );
     let ended = srv.stop(Duration::from_secs(20));
     assert_eq!(ended.code, Some(0), "{ended:?}");
     assert!(!ended.timed_out, "{ended:?}");
