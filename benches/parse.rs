@@ -33,6 +33,7 @@ fn bench(c: &mut Criterion) {
             "parse_and_check_4MB_one_thread_unpacked",
             ParseOptions {
                 pack_literal_aggregates: false,
+                pack_simple_calls: false,
                 ..ParseOptions::single_thread()
             },
         ),

@@ -78,6 +78,10 @@ pub struct ParseOptions {
     /// ([`ast::ExprKind::PackedAggregate`]) rather than as a tree: about a tenth of the
     /// memory, same meaning. Off only to compare the two in tests.
     pub pack_literal_aggregates: bool,
+    /// Keep the arguments of a procedure call whose arguments are all names and plain
+    /// literals (`MoveL p10, v500, z10, tool0;`) as their text ([`ast::CallArgs::Packed`]):
+    /// about a quarter of the memory, same meaning. Off only to compare the two in tests.
+    pub pack_simple_calls: bool,
 }
 
 impl ParseOptions {
@@ -101,6 +105,7 @@ impl Default for ParseOptions {
             parallel_min_bytes: 256 << 10,
             lexical_marks: true,
             pack_literal_aggregates: true,
+            pack_simple_calls: true,
         }
     }
 }

@@ -1,12 +1,14 @@
 //! Packed literal aggregates (`ast::ExprKind::PackedAggregate`: a robtarget or tooldata
-//! literal kept as its text instead of a tree of some twenty nodes) change nothing but memory:
+//! literal kept as its text instead of a tree of some twenty nodes) and packed call arguments
+//! (`ast::CallArgs::Packed`: `MoveL p10, v500, z10, tool0;` kept as its text) change nothing
+//! but memory:
 //! the same AST dump, the same diagnostics (rendered and as JSON), the same lowered program
 //! (what both interpreter engines run) whether the parser packs them or not, and a diagnostic
 //! about one element of a packed aggregate points at that element.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use proptest::prelude::*;
-use rapidvc::ast::{ExprKind, ModuleItem};
+use rapidvc::ast::{CallArgs, ExprKind, ModuleItem, RoutineKind, StmtKind};
 use rapidvc::diag::Diagnostics;
 use rapidvc::parse::ParseOptions;
 use rapidvc::sema;
@@ -62,11 +64,12 @@ fn difference(a: &Outcome, b: &Outcome) -> Option<String> {
 fn options(pack: bool) -> ParseOptions {
     ParseOptions {
         pack_literal_aggregates: pack,
+        pack_simple_calls: pack,
         ..ParseOptions::single_thread()
     }
 }
 
-/// Parse `text` (packing literal aggregates or not), check its structure and analyse it with
+/// Parse `text` (packing literal aggregates and simple calls' arguments, or neither), check its structure and analyse it with
 /// the stdlib.
 fn outcome(text: &str, pack: bool) -> (Outcome, rapidvc::ast::File) {
     let mut map = SourceMap::new();
@@ -217,8 +220,120 @@ fn program() -> impl Strategy<Value = String> {
         })
 }
 
+/// An argument of a procedure call: names, literals (some out of range or with a bad
+/// escape), optional arguments with and without a value, and forms that are never packed
+/// (conditional and named arguments, expressions, aggregates, placeholders).
+fn call_arg() -> impl Strategy<Value = String> {
+    let name = prop::sample::select(vec![
+        "p10", "v500", "z10", "tool0", "n", "x_1", "TRUE", "False", "wobj0", "tBench",
+    ]);
+    let other = prop::sample::select(vec![
+        "Offs(p10, 0, 0, 5)",
+        "n + 1",
+        "-n",
+        "(n)",
+        "x{1}",
+        "p10.trans",
+        "\\A?B",
+        "n:=1",
+        "<ARG>",
+        "\\Num:=n * 2",
+        "\\Conc",
+        "\\ WObj := wobj0",
+    ]);
+    prop_oneof![
+        3 => name.clone().prop_map(str::to_string),
+        3 => leaf(),
+        2 => (name.clone(), prop_oneof![name.clone().prop_map(str::to_string), leaf()])
+            .prop_map(|(n, v)| format!("\\{n}:={v}")),
+        1 => name.prop_map(|n| format!("\\{n}")),
+        1 => aggregate(),
+        1 => other.prop_map(str::to_string),
+    ]
+}
+
+/// A routine of calls to instructions, to a user procedure and to unknown names, with
+/// arguments separated by commas or (before an optional one) by nothing, and white space or
+/// comments between the tokens.
+fn calls() -> impl Strategy<Value = String> {
+    let callee = prop::sample::select(vec!["MoveL", "TPWrite", "WaitTime", "mine", "Nothing"]);
+    let call = (
+        callee,
+        prop::collection::vec((gap(), call_arg(), gap(), prop::bool::ANY), 0..6),
+        gap(),
+    )
+        .prop_map(|(callee, args, end)| {
+            let mut s = format!("    {callee}");
+            for (k, (before, a, after, comma)) in args.into_iter().enumerate() {
+                let sep = if k == 0 || (!comma && a.starts_with('\\')) {
+                    " "
+                } else {
+                    ","
+                };
+                s.push_str(&format!("{sep}{before}{a}{after}"));
+            }
+            s.push_str(&format!("{end};\n"));
+            s
+        });
+    prop::collection::vec(call, 1..8).prop_map(|body| {
+        format!(
+            "MODULE M\n  VAR num n := 1;\n  VAR num x{{2}};\n  VAR robtarget p10;\n  PROC mine(num a, \\switch s, \\num b)\n  ENDPROC\n  PROC main()\n{}  ENDPROC\nENDMODULE\n",
+            body.concat()
+        )
+    })
+}
+
+/// The calls of the routine `main` of a parsed file.
+fn main_calls(file: &rapidvc::ast::File) -> Vec<&CallArgs> {
+    file.modules[0]
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            ModuleItem::Routine(r) if r.name.is("main") && matches!(r.kind, RoutineKind::Proc) => {
+                Some(&r.body)
+            }
+            _ => None,
+        })
+        .flatten()
+        .filter_map(|s| match &s.kind {
+            StmtKind::Call { args, .. } => Some(args),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A call whose arguments are names and literals is packed; one without arguments, with an
+/// expression, or with a diagnostic in an argument is not; without the option nothing is.
+#[test]
+fn simple_calls_are_packed() {
+    let text = "MODULE M\n  PROC main()\n    MoveL p10, v500, z10, tool0\\WObj:=wobj0;\n    TPWrite \"a\"\"b\" \\Num:=-1.5E3;\n    Stop;\n    MoveL Offs(p10, 0, 0, 5), v500, fine, tool0;\n    TPWrite \"bad\\q\";\n    WaitTime 1E39;\n  ENDPROC\nENDMODULE\n";
+    let (packed, file) = outcome(text, true);
+    let kinds: Vec<bool> = main_calls(&file)
+        .iter()
+        .map(|a| matches!(a, CallArgs::Packed(_)))
+        .collect();
+    assert_eq!(kinds, [true, true, false, false, false, false]);
+    let (plain, file) = outcome(text, false);
+    assert!(
+        main_calls(&file)
+            .iter()
+            .all(|a| matches!(a, CallArgs::Tree(_)))
+    );
+    let diff = difference(&packed, &plain);
+    assert!(diff.is_none(), "{}", diff.unwrap_or_default());
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// Packing call arguments changes nothing the front end or the interpreters see.
+    #[test]
+    fn packing_calls_changes_nothing(text in calls()) {
+        let (packed, _) = outcome(&text, true);
+        let (plain, _) = outcome(&text, false);
+        let diff = difference(&packed, &plain);
+        prop_assert!(diff.is_none(), "{}\n{}", text, diff.unwrap_or_default());
+    }
 
     /// Packing changes nothing the front end or the interpreters see.
     #[test]

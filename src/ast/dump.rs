@@ -182,9 +182,11 @@ impl Dumper {
                 target.sexpr(),
                 value.sexpr()
             )),
-            StmtKind::Call { name, args } => {
-                self.line(&format!("call {}{} {at}", name.node, args_text(args, " ")))
-            }
+            StmtKind::Call { name, args } => self.line(&format!(
+                "call {}{} {at}",
+                name.node,
+                args_text(&args.items(name), " ")
+            )),
             StmtKind::LateCall { name, args } => self.line(&format!(
                 "latecall %{}%{} {at}",
                 name.sexpr(),

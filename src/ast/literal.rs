@@ -3,8 +3,8 @@
 //! packed aggregate ([`super::ExprKind::PackedAggregate`]) is unpacked with the same code, so
 //! its tree is the one the parser would have built.
 
-use super::{Expr, ExprKind, UnaryOp};
-use crate::source::{SourceId, Span};
+use super::{Arg, ArgKind, EcoString, Expr, ExprKind, UnaryOp};
+use crate::source::{SourceId, Span, Spanned};
 
 /// The largest finite `num` (IEEE-754 single precision).
 const NUM_MAX: f64 = f32::MAX as f64;
@@ -296,6 +296,103 @@ impl LitReader<'_> {
                 ))
             }
         }
+    }
+}
+
+/// The arguments of a procedure call statement from the text `t` that follows its name up to
+/// and including the `;` (written at byte `start` of `file`), when every argument is a name or
+/// a plain literal: positional (`p10`, `-1.5`, `"text"`, `TRUE`) or optional (`\Switch`,
+/// `\Name:=value`). `None` for anything else (the parser then keeps the tree it built, see
+/// [`super::CallArgs`]).
+pub(crate) fn read_call_args(file: SourceId, t: &str, start: usize) -> Option<Vec<Arg>> {
+    let b = t.as_bytes();
+    let mut scratch = Vec::new();
+    let mut read = LitReader {
+        file,
+        build: true,
+        max_depth: 0,
+        scratch: &mut scratch,
+        errors: Vec::new(),
+    };
+    let span = |a: usize, z: usize| Span::new(file, start + a, start + z);
+    let mut out = Vec::new();
+    let mut pos = 0;
+    skip_trivia(t, &mut pos);
+    if b.get(pos) == Some(&b';') {
+        return (pos + 1 == t.len()).then_some(out);
+    }
+    loop {
+        skip_trivia(t, &mut pos);
+        let at = pos;
+        if b.get(pos) == Some(&b'\\') {
+            pos += 1;
+            skip_trivia(t, &mut pos);
+            let name_at = pos;
+            let name = word(t, &mut pos)?;
+            let name = Spanned::new(EcoString::from(name), span(name_at, pos));
+            skip_trivia(t, &mut pos);
+            let value = if t[pos..].starts_with(":=") {
+                pos += 2;
+                skip_trivia(t, &mut pos);
+                Some(Box::new(call_value(&mut read, t, start, &mut pos)?))
+            } else {
+                None
+            };
+            let end = value.as_ref().map_or(name.span.end, |v| v.span.end);
+            out.push(Arg {
+                kind: ArgKind::Optional { name, value },
+                span: Span::new(file, start + at, end as usize),
+            });
+        } else {
+            let e = call_value(&mut read, t, start, &mut pos)?;
+            out.push(Arg {
+                span: e.span,
+                kind: ArgKind::Positional(e),
+            });
+        }
+        skip_trivia(t, &mut pos);
+        match b.get(pos) {
+            Some(b',') => pos += 1,
+            Some(b'\\') => {}
+            Some(b';') if pos + 1 == t.len() => break,
+            _ => return None,
+        }
+    }
+    read.errors.is_empty().then_some(out)
+}
+
+/// A name (letters, digits, `_`, starting with a letter) at `t[*pos..]`; `pos` ends after it.
+fn word<'t>(t: &'t str, pos: &mut usize) -> Option<&'t str> {
+    let rest = t.get(*pos..)?;
+    if !rest.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        return None;
+    }
+    let n = rest
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
+    *pos += n;
+    rest.get(..n)
+}
+
+/// One argument value of [`read_call_args`]: a name, `TRUE`/`FALSE`, a number (with a sign)
+/// or a string.
+fn call_value(read: &mut LitReader<'_>, t: &str, start: usize, pos: &mut usize) -> Option<Expr> {
+    let at = *pos;
+    match *t.as_bytes().get(at)? {
+        c if c.is_ascii_alphabetic() => {
+            let w = word(t, pos)?;
+            let span = Span::new(read.file, start + at, start + *pos);
+            let kind = if w.eq_ignore_ascii_case("TRUE") {
+                ExprKind::Bool(true)
+            } else if w.eq_ignore_ascii_case("FALSE") {
+                ExprKind::Bool(false)
+            } else {
+                ExprKind::Name(Spanned::new(EcoString::from(w), span))
+            };
+            Some(Expr { kind, span })
+        }
+        b'"' | b'+' | b'-' | b'.' | b'0'..=b'9' => read.item(t, start, pos, 0).map(|(e, _)| e),
+        _ => None,
     }
 }
 

@@ -1,6 +1,8 @@
 //! Pair → AST builders (one file per syntactic category under `build/`), the shared
 //! [`Builder`] state, and the parse entry point that ties prescan, pest and recovery together.
 
+use std::borrow::Cow;
+
 use pest::Parser;
 
 use super::error::{ParseError, ParseErrorKind};
@@ -22,10 +24,9 @@ mod stmt;
 /// State shared by the builders of one file.
 pub(crate) struct Builder<'t, 'd> {
     pub(crate) file: SourceId,
-    /// The text as written: every token is read from it.
+    /// The text as written: every token is read from it. (Pest reads a copy with the
+    /// pre-pass marks, see [`Marked`].)
     pub(crate) text: &'t str,
-    /// The same text with the pre-pass marks (`marks.rs`): what pest parses.
-    marked: &'t str,
     diags: &'d mut Diagnostics,
     /// Byte offset of the piece being built: pest parses `&text[base..]`.
     base: usize,
@@ -36,6 +37,8 @@ pub(crate) struct Builder<'t, 'd> {
     scratch: Vec<ast::Expr>,
     /// Pack literal aggregates ([`ParseOptions::pack_literal_aggregates`]).
     pub(crate) pack: bool,
+    /// Pack the arguments of simple calls ([`ParseOptions::pack_simple_calls`]).
+    pub(crate) pack_calls: bool,
 }
 
 /// Parse and build one file (see [`super::parse_file`]).
@@ -46,8 +49,9 @@ pub(crate) fn parse(
     options: &ParseOptions,
 ) -> ast::File {
     let whole = Span::new(file, 0, text.len());
-    let mut b = Builder::new(file, text, text, diags);
+    let mut b = Builder::new(file, text, diags);
     b.pack = options.pack_literal_aggregates;
+    b.pack_calls = options.pack_simple_calls;
     let empty = ast::File {
         modules: Vec::new(),
         span: whole,
@@ -67,8 +71,12 @@ pub(crate) fn parse(
         1
     };
     let too_deep = || prescan::too_deep(text, MAX_NESTING);
-    let (deep, marked) = if options.lexical_marks {
-        marks::mark_alongside(text, threads, too_deep)
+    // A large file is marked a part at a time (see `Marked`): a marked copy of the whole
+    // would hold the text twice while the tree is built.
+    let by_parts = options.lexical_marks && threads > 1;
+    let (deep, marked) = if options.lexical_marks && !by_parts {
+        let (deep, marked) = marks::mark_alongside(text, threads, too_deep);
+        (deep, Cow::Owned(marked))
     } else {
         (too_deep(), marks::unmarked(text))
     };
@@ -79,30 +87,39 @@ pub(crate) fn parse(
         });
         return empty;
     }
-    b.marked = &marked;
+    let marked = Marked {
+        text: marked,
+        from: 0,
+        by_parts,
+    };
     let mut out = empty;
-    b.file_pieces(&mut out, options);
+    b.file_pieces(&mut out, options, marked);
     out
 }
 
+/// What pest reads: the text with the pre-pass marks of `marks.rs`, from byte `from` of the
+/// file to its end. A small file is marked whole up front. A large one (`by_parts`) is read
+/// unmarked up to its module's body, whose pieces are marked each on its own as they are
+/// parsed (`build/parallel.rs`); the rest, from where the pieces end, is marked then.
+pub(crate) struct Marked<'t> {
+    text: Cow<'t, str>,
+    from: usize,
+    by_parts: bool,
+}
+
 impl<'t, 'd> Builder<'t, 'd> {
-    /// A builder for `text` (pest reads `marked`, see `marks.rs`) that reports into `diags`.
-    pub(crate) fn new(
-        file: SourceId,
-        text: &'t str,
-        marked: &'t str,
-        diags: &'d mut Diagnostics,
-    ) -> Self {
+    /// A builder for `text` that reports into `diags`.
+    pub(crate) fn new(file: SourceId, text: &'t str, diags: &'d mut Diagnostics) -> Self {
         Builder {
             file,
             text,
-            marked,
             diags,
             base: 0,
             errors: 0,
             stopped: false,
             scratch: Vec::new(),
             pack: true,
+            pack_calls: true,
         }
     }
 }
@@ -218,8 +235,8 @@ impl<'t> Builder<'t, '_> {
 
     /// Parse and build the file piece by piece: outside a module, one `entry_top` at a time
     /// (header, module head, or junk); inside, one `entry_module` (up to 16 items, or the end).
-    fn file_pieces(&mut self, out: &mut ast::File, options: &ParseOptions) {
-        let mut pos = 0;
+    fn file_pieces(&mut self, out: &mut ast::File, options: &ParseOptions, mut marked: Marked<'_>) {
+        let mut pos: usize = 0;
         let mut module: Option<ModuleUnderConstruction<'t>> = None;
         // Whether the open module's body was offered to `parallel_items`.
         let mut offered = false;
@@ -231,7 +248,10 @@ impl<'t> Builder<'t, '_> {
             } else {
                 Rule::entry_top
             };
-            let rest = self.marked.get(pos..).unwrap_or("");
+            let rest = pos
+                .checked_sub(marked.from)
+                .and_then(|at| marked.text.get(at..))
+                .unwrap_or("");
             let piece = match RapidParser::parse(rule, rest) {
                 Ok(mut pairs) => pairs.next(),
                 Err(e) => {
@@ -281,7 +301,18 @@ impl<'t> Builder<'t, '_> {
                 && !offered
             {
                 offered = true;
-                if let Some(end) = self.parallel_items(m, pos, options) {
+                let parallel = self.parallel_items(m, pos, options);
+                if marked.by_parts {
+                    // The rest of the file, from where the pieces end (or the whole body
+                    // when it was not cut), is marked in one go.
+                    let from = parallel.unwrap_or(pos);
+                    marked = Marked {
+                        text: Cow::Owned(marks::mark_range(self.text, from, self.text.len())),
+                        from,
+                        by_parts: false,
+                    };
+                }
+                if let Some(end) = parallel {
                     pos = end;
                     stalls = 0;
                     continue;

@@ -124,11 +124,30 @@ fn mark_run(b: &[u8], out: &mut [u8], from: usize) {
         }
     }
 }
+/// The marked copy of `text[from..to]` alone (`from` and `to` at line starts or the text's
+/// ends), made on this thread: what pest reads for one piece of a large file, so the file is
+/// never copied whole. Offsets in it are shifted by `from`.
+pub(crate) fn mark_range(text: &str, from: usize, to: usize) -> String {
+    let Some(part) = text.get(from..to) else {
+        return String::new();
+    };
+    let mut out = neutralised(part.as_bytes());
+    mark_run(text.as_bytes(), &mut out, from);
+    // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
+    String::from_utf8(out).unwrap_or_else(|_| part.to_string())
+}
+
 /// The copy of `text` pest reads without the pre-pass: only the mark characters the text
 /// itself holds are made neutral, so that pest sees the same characters as with the marks
-/// wherever there are none. (Tests compare the two parses: see `ParseOptions::lexical_marks`.)
-pub(crate) fn unmarked(text: &str) -> String {
-    String::from_utf8(neutralised(text.as_bytes())).unwrap_or_else(|_| text.to_string())
+/// wherever there are none (the text itself, not a copy, when it holds none, as nearly every
+/// file). Tests compare the two parses: see `ParseOptions::lexical_marks`.
+pub(crate) fn unmarked(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.bytes().any(|c| c.wrapping_sub(OPEN) < 3) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    std::borrow::Cow::Owned(
+        String::from_utf8(neutralised(text.as_bytes())).unwrap_or_else(|_| text.to_string()),
+    )
 }
 
 /// `b` with the mark characters it holds replaced by [`NEUTRAL`] (rare: only in binary junk).

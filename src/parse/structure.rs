@@ -292,7 +292,7 @@ impl Checker<'_> {
             }
             StmtKind::Call { name, args } => {
                 self.ident(name);
-                self.args(args);
+                self.args(&args.items(name));
             }
             StmtKind::LateCall { name, args } => {
                 self.expr(name);

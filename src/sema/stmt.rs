@@ -294,7 +294,7 @@ impl<'a> Checker<'a> {
         let span = s.span;
         let kind = match &s.kind {
             S::Assign { target, value } => self.assign(target, value)?,
-            S::Call { name, args } => self.proc_call(name, args, span)?,
+            S::Call { name, args } => self.proc_call(name, &args.items(name), span)?,
             S::LateCall { name, args } => {
                 let n = self.rvalue_as(name, Ty::STRING, "the procedure name of a late-bound call");
                 let largs = self.late_args(args);
@@ -578,7 +578,7 @@ impl<'a> Checker<'a> {
     fn proc_call(
         &mut self,
         name: &ast::Ident,
-        args: &'a [ast::Arg],
+        args: &[ast::Arg],
         span: crate::source::Span,
     ) -> Option<StmtKind> {
         if args

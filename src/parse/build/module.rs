@@ -10,7 +10,7 @@ use crate::source::Spanned;
 
 impl<'t> Builder<'t, '_> {
     /// A `module_open` pair: `MODULE name [(attributes)]`.
-    pub(crate) fn module_open(&mut self, p: Pair<'t>) -> ModuleUnderConstruction<'t> {
+    pub(crate) fn module_open(&mut self, p: Pair<'_>) -> ModuleUnderConstruction<'t> {
         let mut span = self.span(&p);
         let mut name: Option<Ident> = None;
         let mut attrs = Vec::new();
@@ -67,9 +67,9 @@ impl<'t> Builder<'t, '_> {
     pub(crate) fn module_item(&mut self, m: &mut ModuleUnderConstruction<'t>, item: Pair<'_>) {
         let span = self.span(&item);
         let built = match item.as_rule() {
-            Rule::record_decl => self.record(item).map(ModuleItem::Record),
-            Rule::alias_decl => self.alias(item).map(ModuleItem::Alias),
-            Rule::data_decl => self.data_decl(item).map(ModuleItem::Data),
+            Rule::record_decl => self.record(item).map(|r| ModuleItem::Record(Box::new(r))),
+            Rule::alias_decl => self.alias(item).map(|a| ModuleItem::Alias(Box::new(a))),
+            Rule::data_decl => self.data_decl(item).map(|d| ModuleItem::Data(Box::new(d))),
             Rule::routine => self.routine(item).map(|r| ModuleItem::Routine(Box::new(r))),
             Rule::item_placeholder => item.into_inner().next().map(|ph| {
                 ModuleItem::Placeholder(Spanned::new(placeholder(self.text_of(&ph)), span))

@@ -8,14 +8,21 @@
 //! parses the body in one go, so the diagnostics of a broken file are exactly those of a
 //! one-thread parse (the cost of a broken file is at most one extra parse of its body).
 
+use std::borrow::Cow;
+
 use pest::Parser;
 
 use super::{Builder, ModuleUnderConstruction};
 use crate::ast::{Module, ModuleItem};
 use crate::diag::Diagnostics;
 use crate::parse::grammar::{RapidParser, Rule};
-use crate::parse::{ParseOptions, jobs, split};
+use crate::parse::{ParseOptions, jobs, marks, split};
 use crate::source::{SourceId, Span, Spanned};
+
+/// The size of a piece of a large module body: small enough that the marked copies of the
+/// pieces being parsed are a small part of the memory, large enough that the pieces' own
+/// costs (a builder, a vector of items) do not matter.
+const PIECE_BYTES: usize = 1 << 20;
 
 /// The items built from one piece and the span they cover.
 type Piece = (Vec<ModuleItem>, Span);
@@ -41,10 +48,13 @@ impl<'t> Builder<'t, '_> {
         if last - from < min {
             return None;
         }
-        // Cuts at about equal distances, each at the first routine start past its mark.
+        // Cuts at about equal distances, each at the first routine start past its mark: at
+        // least one piece per thread, and pieces of about PIECE_BYTES (each piece is marked
+        // for pest on its own, so only the pieces being parsed are held twice).
+        let count = threads.max((last - from) / PIECE_BYTES);
         let mut cuts = vec![from];
-        for k in 1..threads {
-            let mark = from + (last - from) * k / threads;
+        for k in 1..count {
+            let mark = from + (last - from) * k / count;
             let i = starts.partition_point(|&s| s < mark);
             if let Some(&c) = starts.get(i)
                 && c > *cuts.last()?
@@ -57,12 +67,12 @@ impl<'t> Builder<'t, '_> {
         if cuts.len() < 3 {
             return None;
         }
-        let (file, text, marked) = (self.file, self.text, self.marked);
+        let (file, text) = (self.file, self.text);
         let runs: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
         let (_, pieces) = jobs::run(
             threads,
             runs,
-            |(a, b)| piece(file, text, marked, a, b, options.pack_literal_aggregates),
+            |(a, b)| piece(file, text, a, b, options),
             || (),
         );
         let pieces = pieces
@@ -83,19 +93,24 @@ impl<'t> Builder<'t, '_> {
 }
 
 /// Parse and build the items of `text[from..to]`, which must be whole module items only;
-/// `None` if anything in it is not. (`marked` is the text with the pre-pass marks: pest
-/// parses it, see `marks.rs`.)
+/// `None` if anything in it is not. (Pest parses a copy of the piece with the pre-pass marks,
+/// see `marks.rs`, or without them when `options` say so.)
 fn piece(
     file: SourceId,
     text: &str,
-    marked: &str,
     from: usize,
     to: usize,
-    pack: bool,
+    options: &ParseOptions,
 ) -> Option<Piece> {
     let mut diags = Diagnostics::new();
-    let mut b = Builder::new(file, text, marked, &mut diags);
-    b.pack = pack;
+    let marked = if options.lexical_marks {
+        Cow::Owned(marks::mark_range(text, from, to))
+    } else {
+        marks::unmarked(text.get(from..to)?)
+    };
+    let mut b = Builder::new(file, text, &mut diags);
+    b.pack = options.pack_literal_aggregates;
+    b.pack_calls = options.pack_simple_calls;
     let at = Span::new(file, from, from);
     let mut m = ModuleUnderConstruction {
         module: Module {
@@ -109,7 +124,7 @@ fn piece(
     };
     let mut pos = from;
     loop {
-        let piece = RapidParser::parse(Rule::entry_module, marked.get(pos..to)?)
+        let piece = RapidParser::parse(Rule::entry_module, marked.get(pos - from..)?)
             .ok()?
             .next()?;
         b.base = pos;

@@ -3,7 +3,9 @@
 
 use super::Builder;
 use super::expr::placeholder;
-use crate::ast::{Expr, Stmt, StmtKind, TestCase};
+use crate::ast::Arg;
+use crate::ast::literal;
+use crate::ast::{CallArgs, Expr, Ident, PackedArgs, Stmt, StmtKind, TestCase};
 use crate::parse::error::ParseErrorKind;
 use crate::parse::grammar::{Pair, Rule};
 use crate::parse::recover::Region;
@@ -44,15 +46,35 @@ impl Builder<'_, '_> {
         Some(Stmt { kind: kind?, span })
     }
 
+    /// The arguments of a call to `name` that ends (with its `;`) at byte `end`, packed as
+    /// their text when reading the text back gives exactly the tree built
+    /// ([`CallArgs::Packed`]).
+    fn pack_call_args(&self, name: &Ident, args: Box<[Arg]>, end: usize) -> CallArgs {
+        let from = name.span.end as usize;
+        // (No arguments take no memory as a tree.)
+        let Some(text) = self.text.get(from..end).filter(|_| !args.is_empty()) else {
+            return CallArgs::Tree(args);
+        };
+        match literal::read_call_args(self.file, text, from) {
+            Some(read) if *read == *args => CallArgs::Packed(PackedArgs::new(text)),
+            _ => CallArgs::Tree(args),
+        }
+    }
+
     /// A statement that starts with a name: `call_tail`, `assign_tail` or `label_tail`.
     fn name_stmt(&mut self, name: Pair<'_>, tail: Pair<'_>) -> Option<StmtKind> {
         Some(match tail.as_rule() {
             Rule::call_tail => {
                 let name = self.ident(&name);
-                StmtKind::Call {
-                    name,
-                    args: self.call_args(tail.into_inner())?,
-                }
+                let errors = self.errors;
+                let end = self.end(&tail);
+                let args = self.call_args(tail.into_inner())?;
+                let args = if self.pack_calls && self.errors == errors {
+                    self.pack_call_args(&name, args, end)
+                } else {
+                    CallArgs::Tree(args)
+                };
+                StmtKind::Call { name, args }
             }
             Rule::assign_tail => {
                 let mut inner = tail.into_inner().peekable();
