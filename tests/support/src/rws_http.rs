@@ -189,6 +189,20 @@ impl Client {
         self.request("GET", path, b"")
     }
 
+    /// A client of `Default User` that has logged in (its first request answered 200).
+    pub fn login(addr: SocketAddr) -> Client {
+        let mut c = Client::new(addr, "Default User", "robotics");
+        let r = c.get("/rw/panel/ctrlstate?json=1");
+        assert_eq!(r.status, 200, "{}", r.text());
+        c
+    }
+
+    /// The first `_state` entry of a resource in the JSON representation.
+    pub fn state(&mut self, path: &str) -> serde_json::Value {
+        let sep = if path.contains('?') { '&' } else { '?' };
+        self.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
+    }
+
     pub fn post(&mut self, path: &str, form: &str) -> Resp {
         self.request("POST", path, form.as_bytes())
     }
