@@ -626,13 +626,7 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
             >= 400
     );
     // The event log holds what happened, numbered.
-    let log = c.get("/rw/elog/0?json=1").json();
-    let codes: Vec<String> = log["_embedded"]["_state"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|e| e["code"].as_str().unwrap().to_string())
-        .collect();
+    let codes = c.elog_codes();
     for want in ["10150", "10151", "10002", "10010"] {
         assert!(codes.iter().any(|c| c == want), "{want} in {codes:?}");
     }

@@ -200,6 +200,19 @@ impl Client {
         self.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
     }
 
+    /// The event log's codes (`rw/elog/0`), oldest first as served.
+    pub fn elog_codes(&mut self) -> Vec<String> {
+        let log = self.get("/rw/elog/0?json=1").json();
+        log["_embedded"]["_state"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|e| e["code"].as_str().map(str::to_string))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
     pub fn post(&mut self, path: &str, form: &str) -> Resp {
         self.request("POST", path, form.as_bytes())
     }
