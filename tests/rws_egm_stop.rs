@@ -357,3 +357,54 @@ fn the_speed_ratio_slows_an_egm_run_at_once() {
     assert!((1.4..2.4).contains(&ratio), "{half} s / {full} s = {ratio}");
     no_errors(&mut c);
 }
+
+/// The TCP's x (mm) in Base, as served.
+fn tcp_x(c: &mut Client) -> f64 {
+    number(c, ROBTARGET, "x")
+}
+
+/// tool0's robtarget in Base.
+const ROBTARGET: &str =
+    "/rw/motionsystem/mechunits/ROB_1/robtarget?tool=tool0&wobj=wobj0&coordinate=Base";
+
+#[test]
+fn a_stop_during_egm_move_l_brakes_and_a_start_continues_the_corrected_move() {
+    // The built-in sensor corrects the path by (0, 3, -2) mm.
+    let srv = serve("egmmovestop", "builtin:pathcorr:y=3,z=-2");
+    let mut c = login(&srv);
+    post(
+        &mut c,
+        "/rw/iosystem/signals/Local/DRV_1/egm_mode?action=set",
+        "lvalue=3",
+    );
+    start(&mut c, "once");
+    wait_until(
+        Duration::from_secs(20),
+        Duration::from_millis(20),
+        "EGMMoveL moves along x",
+        || num(&mut c, "last_mode") == 3.0 && tcp_x(&mut c) > 1100.0,
+    );
+    stop(&mut c);
+    std::thread::sleep(Duration::from_millis(800));
+    let held = tcp_x(&mut c);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(tcp_x(&mut c), held, "the robot stands while stopped");
+    assert!(held > 1100.0 && held < 1390.0, "stopped on the way: {held}");
+    start(&mut c, "asis");
+    wait_until(
+        Duration::from_secs(20),
+        Duration::from_millis(50),
+        "the program ends",
+        || stopped(&mut c),
+    );
+    // At the end of the path, still corrected after the start (tool0's TCP: the program's
+    // tool is 200 mm long along z).
+    let at = |c: &mut Client, f: &str| number(c, ROBTARGET, f);
+    let (x, y, z) = (at(&mut c, "x"), at(&mut c, "y"), at(&mut c, "z"));
+    assert!((x - 1400.0).abs() < 0.5, "at the end of the path: {x}");
+    assert!(
+        ((y - 20.0).abs() - 3.0).abs() < 0.5 && ((z - 700.0).abs() - 2.0).abs() < 0.5,
+        "corrected: {y} {z}"
+    );
+    no_errors(&mut c);
+}
