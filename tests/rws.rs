@@ -715,16 +715,6 @@ fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
     );
 }
 
-/// Wait up to `secs` for `done` (polling every 50 ms); a time-out fails naming `what`.
-fn until(secs: u64, what: &str, done: impl FnMut() -> bool) {
-    wait_until(
-        Duration::from_secs(secs),
-        Duration::from_millis(50),
-        what,
-        done,
-    );
-}
-
 /// Every task's entry of `rw/rapid/tasks`, by name: (type, excstate, active, motiontask).
 fn tasks(c: &mut Client) -> Vec<(String, [String; 4])> {
     let j = c.get("/rw/rapid/tasks?json=1").json();
@@ -783,7 +773,7 @@ fn a_served_system_of_three_tasks_runs_its_static_tasks_across_stops_and_talks_r
     assert_eq!(t[2].1, ["semi", "star", "On", "FALSE"].map(String::from));
     // The STATIC task counts from boot, before any start.
     let t0 = num(&mut c, "T_LOG/ticks");
-    until(10, "T_LOG does not run at boot", || {
+    within(10, "T_LOG does not run at boot", || {
         num(&mut c, "T_LOG/ticks") >= t0 + 5.0
     });
 
@@ -812,56 +802,44 @@ fn a_served_system_of_three_tasks_runs_its_static_tasks_across_stops_and_talks_r
 
     // Start once: the robot moves, the shared PERS counts (seen by T_CELL), the message is
     // answered into the external queue with its type.
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=once")
-            .status,
-        204
-    );
+    start_program(&mut c, "once");
     let answer = dipc_read(&mut c, "PC_Q");
     assert_eq!(
         answer,
         Some(("string;\"got hello\"".to_string(), "7".to_string()))
     );
-    until(10, "stopped(&mut c)", || stopped(&mut c));
+    within(10, "stopped(&mut c)", || stopped(&mut c));
     assert_eq!(num(&mut c, "T_ROB1/shared"), 1.0);
-    until(5, "the shared PERS is one value in every task", || {
+    within(5, "the shared PERS is one value in every task", || {
         num(&mut c, "T_CELL/Cell/shared") == 1.0
     });
-    until(5, "num( &mut c, 'T_CELL/seen' ) == 1.0", || {
+    within(5, "num( &mut c, 'T_CELL/seen' ) == 1.0", || {
         num(&mut c, "T_CELL/seen") == 1.0
     });
 
     // Start again and stop while T_ROB1 waits for a message: only the NORMAL task stops;
     // the STATIC one keeps counting.
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=once")
-            .status,
-        204
-    );
-    until(10, "num( &mut c, 'T_ROB1/shared' ) == 2.0", || {
+    start_program(&mut c, "once");
+    within(10, "num( &mut c, 'T_ROB1/shared' ) == 2.0", || {
         num(&mut c, "T_ROB1/shared") == 2.0
     });
-    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
-    until(5, "stopped(&mut c)", || stopped(&mut c));
+    stop_program(&mut c);
+    within(5, "stopped(&mut c)", || stopped(&mut c));
     let t = tasks(&mut c);
     assert_eq!(t[0].1[1], "stop");
     assert_eq!(t[1].1[1], "star");
     let before = num(&mut c, "T_LOG/ticks");
-    until(10, "T_LOG stopped with the NORMAL task", || {
+    within(10, "T_LOG stopped with the NORMAL task", || {
         num(&mut c, "T_LOG/ticks") >= before + 5.0
     });
     // A message meanwhile waits; on start the program continues from its pointer and takes it.
     assert_eq!(send(&mut c, "T_ROB1", "string;%22again%22").status, 204);
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=asis")
-            .status,
-        204
-    );
+    start_program(&mut c, "asis");
     assert_eq!(
         dipc_read(&mut c, "PC_Q"),
         Some(("string;\"got again\"".to_string(), "7".to_string()))
     );
-    until(10, "stopped(&mut c)", || stopped(&mut c));
+    within(10, "stopped(&mut c)", || stopped(&mut c));
     assert_eq!(num(&mut c, "T_ROB1/answered"), 2.0);
 
     // Deactivated, T_ROB1 does not start (no NORMAL task is active); activated, it does.
