@@ -4,6 +4,7 @@
 //! persistents, and while the program is stopped blocks at the statement boundary with the
 //! robot held, so the program continues from its program pointer when it is started again.
 
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -33,6 +34,8 @@ pub struct ProgramSide {
     last_poll: Instant,
     /// One task of a system of several (see [`ProgramSide::in_system`]).
     system: Option<InSystem>,
+    /// The speed ratio the robot was last given (percent).
+    ratio: u8,
 }
 
 /// What a task of a system of several tasks keeps: its own view of resets and starts, and
@@ -78,6 +81,7 @@ impl ProgramSide {
             pers: Vec::new(),
             last_poll: Instant::now(),
             system: None,
+            ratio: 100,
         }
     }
 
@@ -305,6 +309,14 @@ impl ProgramSide {
     fn serve(&mut self, it: &mut Interp) {
         while let Ok(req) = self.requests.try_recv() {
             self.answer(it, req);
+        }
+        // The speed ratio scales the robot at once (moves already planned, EGM).
+        let ratio = self.state.limits.speed_ratio.load(Ordering::Relaxed);
+        if ratio != self.ratio
+            && let Some(h) = host(it)
+        {
+            self.ratio = ratio;
+            h.set_speed_ratio(ratio);
         }
         if self.last_poll.elapsed() >= DATA_POLL {
             self.last_poll = Instant::now();
