@@ -440,3 +440,44 @@ fn rmq_arrays_and_wait_sync_in_position() {
         )
     );
 }
+
+#[test]
+fn a_pers_of_a_module_loaded_at_run_time_is_shared_by_name() {
+    let (dir, mut args) = system(
+        "loadpers",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num late := 1;\n  PERS num odd := 0;\n  PROC main()\n    late := 7;\n    WaitTime 1;\n    TPWrite \"a: \" \\Num:=late;\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PROC main()\n    WaitTime 0.5;\n    Load \\Dynamic, \"HOME:\" \\File:=\"late.mod\";\n    %\"show\"%;\n    Load \\Dynamic, \"HOME:\" \\File:=\"other.mod\";\n  ERROR\n    TPWrite \"b: load error \" \\Num:=ERRNO;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    // `late` is T_ROB1's (its value, 7, wins over the module's 3); the loaded routine writes
+    // it and T_ROB1 sees the write. `odd`, a num in T_ROB1, is refused as a bool.
+    std::fs::write(
+        dir.join("late.mod"),
+        "MODULE late\n  PERS num late := 3;\n  PROC show()\n    TPWrite \"b: \" \\Num:=late;\n    late := late + 1;\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("other.mod"),
+        "MODULE other\n  PERS num fresh := 0;\n  PERS bool odd := TRUE;\nENDMODULE\n",
+    )
+    .unwrap();
+    args.extend(["--home".to_string(), ".".to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let ended = run_in(&dir, &args);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(
+        ended.stdout, "[T_B] b: 7\n[T_B] b: load error 1152\n[T_ROB1] a: 8\n",
+        "{}",
+        ended.stderr
+    );
+}

@@ -719,3 +719,165 @@ fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
         ended.stderr
     );
 }
+
+/// Every task's entry of `rw/rapid/tasks`, by name: (type, excstate, active, motiontask).
+fn tasks(c: &mut Client) -> Vec<(String, [String; 4])> {
+    let j = c.get("/rw/rapid/tasks?json=1").json();
+    j["_embedded"]["_state"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| {
+            let f = |k: &str| t[k].as_str().unwrap().to_string();
+            (
+                f("name"),
+                [f("type"), f("excstate"), f("active"), f("motiontask")],
+            )
+        })
+        .collect()
+}
+
+/// A number the program holds, read over RWS.
+fn num(c: &mut Client, path: &str) -> f64 {
+    state(c, &format!("/rw/rapid/symbol/data/RAPID/{path}"))["value"]
+        .as_str()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+/// The next message of an external queue (waiting up to 5 s): `dipc-data` and
+/// `dipc-userdef`.
+fn dipc_read(c: &mut Client, queue: &str) -> Option<(String, String)> {
+    let j = c
+        .get(&format!(
+            "/rw/dipc/{queue}?action=dipc-read&timeout=5&json=1"
+        ))
+        .json();
+    let m = j["_embedded"]["_state"].get(0)?.clone();
+    Some((
+        m["dipc-data"].as_str()?.to_string(),
+        m["dipc-userdef"].as_str()?.to_string(),
+    ))
+}
+
+#[test]
+fn a_served_system_of_three_tasks_runs_its_static_tasks_across_stops_and_talks_rmq() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "tasks",
+        "tests/serve_tasks",
+        &[],
+    );
+    let mut c = login(&srv);
+    let t = tasks(&mut c);
+    let names: Vec<&str> = t.iter().map(|t| t.0.as_str()).collect();
+    assert_eq!(names, ["T_ROB1", "T_LOG", "T_CELL"]);
+    assert_eq!(t[0].1, ["norm", "read", "On", "TRUE"].map(String::from));
+    assert_eq!(t[1].1, ["stat", "star", "On", "FALSE"].map(String::from));
+    assert_eq!(t[2].1, ["semi", "star", "On", "FALSE"].map(String::from));
+    // The STATIC task counts from boot, before any start.
+    let t0 = num(&mut c, "T_LOG/ticks");
+    within(10, "T_LOG does not run at boot", || {
+        num(&mut c, "T_LOG/ticks") >= t0 + 5.0
+    });
+
+    // A message to a task's queue before the task reads it: it waits in the queue.
+    assert_eq!(
+        c.post(
+            "/rw/dipc?action=dipc-create",
+            "dipc-queue-name=PC_Q&dipc-queue-size=10&dipc-max-msg-size=444"
+        )
+        .status,
+        201
+    );
+    let send = |c: &mut Client, to: &str, data: &str| {
+        c.post(
+            &format!("/rw/dipc/{to}?action=dipc-send"),
+            &format!(
+                "dipc-src-queue-name=PC_Q&dipc-cmd=111&dipc-userdef=5&dipc-msgtype=1&dipc-data={data}"
+            ),
+        )
+    };
+    // Data without its type is refused (a task's queue holds typed RAPID data).
+    let r = send(&mut c, "RMQ_T_ROB1", "hello");
+    assert!(r.status == 400 || r.status == 403, "{}", r.text());
+    assert!(r.text().contains("type;value"), "{}", r.text());
+    assert_eq!(send(&mut c, "RMQ_T_ROB1", "string;%22hello%22").status, 204);
+
+    // Start once: the robot moves, the shared PERS counts (seen by T_CELL), the message is
+    // answered into the external queue with its type.
+    start_program(&mut c, "once");
+    let answer = dipc_read(&mut c, "PC_Q");
+    assert_eq!(
+        answer,
+        Some(("string;\"got hello\"".to_string(), "7".to_string()))
+    );
+    within(10, "stopped(&mut c)", || stopped(&mut c));
+    assert_eq!(num(&mut c, "T_ROB1/shared"), 1.0);
+    within(5, "the shared PERS is one value in every task", || {
+        num(&mut c, "T_CELL/Cell/shared") == 1.0
+    });
+    within(5, "num( &mut c, 'T_CELL/seen' ) == 1.0", || {
+        num(&mut c, "T_CELL/seen") == 1.0
+    });
+
+    // Start again and stop while T_ROB1 waits for a message: only the NORMAL task stops;
+    // the STATIC one keeps counting.
+    start_program(&mut c, "once");
+    within(10, "num( &mut c, 'T_ROB1/shared' ) == 2.0", || {
+        num(&mut c, "T_ROB1/shared") == 2.0
+    });
+    stop_program(&mut c);
+    within(5, "stopped(&mut c)", || stopped(&mut c));
+    let t = tasks(&mut c);
+    assert_eq!(t[0].1[1], "stop");
+    assert_eq!(t[1].1[1], "star");
+    let before = num(&mut c, "T_LOG/ticks");
+    within(10, "T_LOG stopped with the NORMAL task", || {
+        num(&mut c, "T_LOG/ticks") >= before + 5.0
+    });
+    // A message meanwhile waits; on start the program continues from its pointer and takes it.
+    assert_eq!(send(&mut c, "T_ROB1", "string;%22again%22").status, 204);
+    start_program(&mut c, "asis");
+    assert_eq!(
+        dipc_read(&mut c, "PC_Q"),
+        Some(("string;\"got again\"".to_string(), "7".to_string()))
+    );
+    within(10, "stopped(&mut c)", || stopped(&mut c));
+    assert_eq!(num(&mut c, "T_ROB1/answered"), 2.0);
+
+    // Deactivated, T_ROB1 does not start (no NORMAL task is active); activated, it does.
+    assert_eq!(
+        c.post("/rw/rapid/tasks/T_ROB1?action=deactivate", "")
+            .status,
+        204
+    );
+    assert_eq!(tasks(&mut c)[0].1[2], "Off");
+    let r = c.post("/rw/rapid/execution?action=start", "cycle=once");
+    assert!(r.status >= 400, "{}", r.text());
+    assert_eq!(
+        c.post("/rw/rapid/tasks/T_ROB1?action=activate", "").status,
+        204
+    );
+    // An unknown task's data is a 404.
+    assert_eq!(
+        c.get("/rw/rapid/symbol/data/RAPID/T_NONE/shared?json=1")
+            .status,
+        404
+    );
+    let ended = srv.stop(Duration::from_secs(20));
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert!(
+        ended
+            .stdout
+            .contains("[T_ROB1] robot: hello (a string) from PC_Q"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stdout.contains("[T_CELL] cell: shared is 2"),
+        "{}",
+        ended.stdout
+    );
+}

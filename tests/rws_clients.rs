@@ -80,3 +80,27 @@ fn rws_and_egm_script(tag: &str, script: &str) {
         ended.stderr
     );
 }
+
+#[test]
+#[cfg_attr(
+    not(rapidvc_python),
+    ignore = "needs RAPIDVC_PYTHON (a Python with abb_robot_client) when the tests are built"
+)]
+fn abb_robot_client_drives_a_system_of_three_tasks_and_its_rmq() {
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "pytasks",
+        "tests/serve_tasks",
+        &[],
+    );
+    let mut cmd = Command::new(python());
+    cmd.arg(root().join("tests/clients/rws_tasks.py"))
+        .arg(srv.url());
+    let ended = Proc::spawn(cmd).wait(Duration::from_secs(90));
+    assert!(
+        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
+        "stdout:\n{}\nstderr:\n{}",
+        ended.stdout,
+        ended.stderr
+    );
+}

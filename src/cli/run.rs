@@ -562,6 +562,10 @@ fn start_view(
         .start(plot_title(args), &robot, args.period, sources, files)
 }
 
+/// A started controller: its handle, its EGM side, whether `--egm-log` is written, and
+/// whether an external sensor takes part in a virtual run.
+pub(crate) type StartedController = (ControllerHandle, EgmController, bool, bool);
+
 /// The controller of this run: robot, period, start position, clock, trace, plot and view,
 /// and its EGM side (devices, clock choice, output feed, `--egm-log`).
 /// Returns the controller, its EGM side, whether `--egm-log` is written, and whether an
@@ -577,7 +581,7 @@ pub(super) fn start_controller(
     egm_devices: Option<&egm_options::DeviceUse>,
     uses_sockets: bool,
     view: Option<&view_options::ViewRun>,
-) -> Result<(ControllerHandle, EgmController, bool, bool), String> {
+) -> Result<StartedController, String> {
     let uses_egm = egm_devices.is_some();
     if args.egm.egm_log.is_some() && !uses_egm {
         eprintln!("note: --egm-log: the program uses no EGM; no log is written");

@@ -7,6 +7,8 @@
 //! The first line on stdout says where RWS listens (`rapidvc serve: Robot Web Services on
 //! http://127.0.0.1:8080`); TP output follows on stdout, the event log on stderr.
 
+mod system;
+
 use std::io::Write;
 use std::net::SocketAddr;
 use std::process::ExitCode;
@@ -78,12 +80,7 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
     let args = args;
     let a = &args.run;
     if run::tasks::wants_system(a) {
-        eprintln!(
-            "error: `serve` boots one motion task (T_ROB1) from RAPID files for now; a system \
-             with several tasks (SYS.cfg, a backup folder, `TASK=file`) runs with `rapidvc run` \
-             (virtual time)"
-        );
-        return ExitCode::from(2);
+        return system::serve_system(&args, &shutdown);
     }
     let loaded = program::load(&a.files, a.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
@@ -104,45 +101,15 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let listener = match rws::bind(args.rws) {
-        Ok(l) => l,
-        Err(e) => {
-            eprintln!("error: --rws: cannot listen: {e}");
-            return ExitCode::from(2);
-        }
-    };
     let system = run::system_services(a, &loaded.config, &loaded.sources);
-    let storage = Arc::new(MassStorage::new(a.home.clone()));
-    let roots = match storage.roots() {
-        Ok((roots, note)) => {
-            if let Some(n) = note {
-                eprintln!("{n}");
-            }
-            roots
-        }
-        Err(e) => {
-            eprintln!("error: cannot make the mass storage: {e}");
+    let (storage, roots, listener) = match boot(&args, a.home.clone()) {
+        Ok(b) => b,
+        Err(msg) => {
+            eprintln!("error: {msg}");
             return ExitCode::from(2);
         }
     };
-    let info = ServeInfo {
-        system: SystemInfo {
-            name: system.info.system_name.clone(),
-            robotware_version: crate::system::info::ROBOTWARE_VERSION
-                .split('.')
-                .take(3)
-                .collect::<Vec<_>>()
-                .join("."),
-            options: vec![
-                "616-1 PC Interface".into(),
-                "689-1 Externally Guided Motion (EGM)".into(),
-            ],
-            serial: system.info.serial.clone(),
-        },
-        cfg: system.cfg.clone(),
-        roots,
-        signals: Arc::clone(&loaded.signals),
-    };
+    let info = serve_info(&system, system.cfg.clone(), roots, &loaded.signals);
     let calendar = system.calendar;
     let sources = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
@@ -178,31 +145,30 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let opts = RwsOptions {
-        max_sessions: args.rws_sessions as usize,
-        max_subscriptions: args.rws_subscriptions as usize,
-        subscription_unclaimed: std::time::Duration::from_secs_f64(args.rws_unclaimed),
-        ..RwsOptions::default()
-    };
-    let max = opts.max_connections;
-    let server = match RwsServer::start(listener, rws::router(handle, opts), max) {
+    let server = match start_rws(&args, listener, handle) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: cannot start Robot Web Services: {e}");
+        Err(msg) => {
+            eprintln!("error: {msg}");
             shutdown.store(true, Ordering::Relaxed);
             let _ = services.join();
             return ExitCode::from(2);
         }
     };
-    {
-        let mut out = std::io::stdout().lock();
-        let _ = writeln!(
-            out,
-            "rapidvc serve: Robot Web Services on {} (RWS 1.0, plain HTTP; user \"Default User\", password \"robotics\")",
-            server.url()
-        );
-        let _ = out.flush();
-    }
+    started_line(&server);
+    // One task booted from files: no RAPID message queue to send to.
+    state.set_task_queues(Box::new(|target, _| {
+        let task = target
+            .get(..4)
+            .filter(|p| p.eq_ignore_ascii_case("RMQ_"))
+            .and_then(|_| target.get(4..))
+            .unwrap_or(target);
+        task.eq_ignore_ascii_case(MOTION_TASK).then(|| {
+            Err(format!(
+                "task {MOTION_TASK} booted from plain files has no RAPID message queue: boot a \
+                 system (a backup folder, SYS.cfg, or `{MOTION_TASK}=file.mod`) to use RMQ"
+            ))
+        })
+    }));
     let log_state = Arc::clone(&state);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
@@ -280,6 +246,81 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
     }
     eprintln!("rapidvc serve: stopped");
     code
+}
+
+/// The mass storage, its roots (`HOME`, `TEMP`, `RAMDISK` on the host) and the RWS listener.
+type Booted = (
+    Arc<MassStorage>,
+    Vec<(String, std::path::PathBuf)>,
+    std::net::TcpListener,
+);
+
+/// The mass storage (HOME at `home`) with its roots, and the RWS listener.
+fn boot(args: &ServeArgs, home: Option<std::path::PathBuf>) -> Result<Booted, String> {
+    let listener = rws::bind(args.rws).map_err(|e| format!("--rws: cannot listen: {e}"))?;
+    let storage = Arc::new(MassStorage::new(home));
+    let (roots, note) = storage
+        .roots()
+        .map_err(|e| format!("cannot make the mass storage: {e}"))?;
+    if let Some(n) = note {
+        eprintln!("{n}");
+    }
+    Ok((storage, roots, listener))
+}
+
+/// Start Robot Web Services on `listener` with the options of `args`.
+fn start_rws(
+    args: &ServeArgs,
+    listener: std::net::TcpListener,
+    handle: crate::controller::service::ServiceHandle,
+) -> Result<RwsServer, String> {
+    let opts = RwsOptions {
+        max_sessions: args.rws_sessions as usize,
+        max_subscriptions: args.rws_subscriptions as usize,
+        subscription_unclaimed: std::time::Duration::from_secs_f64(args.rws_unclaimed),
+        ..RwsOptions::default()
+    };
+    let max = opts.max_connections;
+    RwsServer::start(listener, rws::router(handle, opts), max)
+        .map_err(|e| format!("cannot start Robot Web Services: {e}"))
+}
+
+/// What the controller says about itself over RWS.
+fn serve_info(
+    system: &crate::system::Services,
+    cfg: crate::system::cfg_data::CfgData,
+    roots: Vec<(String, std::path::PathBuf)>,
+    signals: &Arc<crate::signals::SignalTable>,
+) -> ServeInfo {
+    ServeInfo {
+        system: SystemInfo {
+            name: system.info.system_name.clone(),
+            robotware_version: crate::system::info::ROBOTWARE_VERSION
+                .split('.')
+                .take(3)
+                .collect::<Vec<_>>()
+                .join("."),
+            options: vec![
+                "616-1 PC Interface".into(),
+                "689-1 Externally Guided Motion (EGM)".into(),
+            ],
+            serial: system.info.serial.clone(),
+        },
+        cfg,
+        roots,
+        signals: Arc::clone(signals),
+    }
+}
+
+/// The first line on stdout: where RWS listens.
+fn started_line(server: &RwsServer) {
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "rapidvc serve: Robot Web Services on {} (RWS 1.0, plain HTTP; user \"Default User\", password \"robotics\")",
+        server.url()
+    );
+    let _ = out.flush();
 }
 
 /// `--rws-unclaimed`: seconds, 0.1 to 3600.

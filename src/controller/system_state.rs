@@ -60,7 +60,15 @@ struct Inner {
     next_seq: u64,
     queues: HashMap<String, VecDeque<DipcMessage>>,
     robot: RobotState,
+    /// Program-pointer resets so far (each task of a system takes its own).
+    pp_resets: u64,
+    /// Starts so far (a NORMAL task whose cycle ended waits for the next one).
+    starts: u64,
 }
+
+/// Delivers a message sent over `rw/dipc` to a RAPID task's message queue: `None` when the
+/// name is no task's queue, else whether it was queued (the error says why not).
+pub type TaskQueues = Box<dyn Fn(&str, &DipcMessage) -> Option<Result<(), String>> + Send + Sync>;
 
 /// The controller's state (see the module docs).
 #[derive(Debug)]
@@ -73,6 +81,18 @@ pub struct SystemState {
     events: EventPublisher,
     calendar: Calendar,
     clock: MonotonicClock,
+    /// The RAPID tasks' message queues (a system with several tasks).
+    task_queues: TaskQueuesSlot,
+}
+
+/// Where [`TaskQueues`] is kept (a closure, shown by whether it is set).
+struct TaskQueuesSlot(Mutex<Option<TaskQueues>>);
+
+impl std::fmt::Debug for TaskQueuesSlot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let set = self.0.lock().map(|g| g.is_some()).unwrap_or(false);
+        write!(f, "TaskQueues({})", if set { "set" } else { "none" })
+    }
 }
 
 impl SystemState {
@@ -107,13 +127,114 @@ impl SystemState {
                     time: 0.0,
                     joints: [0.0; 6],
                 },
+                pp_resets: 0,
+                starts: 0,
             }),
             limits: Arc::new(PanelLimits::default()),
             shutdown,
             events,
             calendar,
             clock: MonotonicClock::new(),
+            task_queues: TaskQueuesSlot(Mutex::new(None)),
         }
+    }
+
+    /// A system of several tasks: replace the task list (in task-number order).
+    pub fn set_tasks(&self, tasks: Vec<TaskInfo>) {
+        self.lock().tasks = tasks;
+    }
+
+    /// Set one task's execution state (a STATIC task running or ended, a NORMAL task whose
+    /// cycle ended); publishes it.
+    pub fn set_task_state(&self, task: &str, exec: TaskExecState) {
+        let info = {
+            let mut g = self.lock();
+            let Some(t) = g
+                .tasks
+                .iter_mut()
+                .find(|t| t.name.eq_ignore_ascii_case(task))
+            else {
+                return;
+            };
+            if t.exec_state == exec {
+                return;
+            }
+            t.exec_state = exec;
+            t.clone()
+        };
+        self.publish(Event::Task(info));
+    }
+
+    /// True when no active NORMAL task is running (their cycles have all ended).
+    pub fn normal_tasks_idle(&self) -> bool {
+        !self.lock().tasks.iter().any(|t| {
+            t.active && t.task_type == TaskType::Normal && t.exec_state == TaskExecState::Started
+        })
+    }
+
+    /// True when task `task` is active (takes part when the NORMAL tasks start).
+    pub fn task_active(&self, task: &str) -> bool {
+        self.lock()
+            .tasks
+            .iter()
+            .any(|t| t.active && t.name.eq_ignore_ascii_case(task))
+    }
+
+    /// Program-pointer resets so far.
+    pub fn pp_resets(&self) -> u64 {
+        self.lock().pp_resets
+    }
+
+    /// Starts so far.
+    pub fn starts(&self) -> u64 {
+        self.lock().starts
+    }
+
+    /// Where `rw/dipc` messages to a RAPID task's queue go.
+    pub fn set_task_queues(&self, queues: TaskQueues) {
+        *self
+            .task_queues
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(queues);
+    }
+
+    /// Deliver `message` to the RAPID task queue `target`; `None` when it names none.
+    pub fn deliver_to_task(
+        &self,
+        target: &str,
+        message: &DipcMessage,
+    ) -> Option<Result<(), String>> {
+        let g = self
+            .task_queues
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        g.as_ref().and_then(|f| f(target, message))
+    }
+
+    /// True when the external queue `queue` exists.
+    pub fn dipc_exists(&self, queue: &str) -> bool {
+        self.lock().queues.contains_key(queue)
+    }
+
+    /// Put `message` in the external queue `queue` (a RAPID task sends to it) and publish it.
+    pub fn dipc_push(&self, queue: &str, message: DipcMessage) -> Result<(), String> {
+        {
+            let mut g = self.lock();
+            match g.queues.get_mut(queue) {
+                None => return Err(format!("there is no external queue {queue}")),
+                Some(q) if q.len() >= MAX_QUEUE_MESSAGES => {
+                    return Err(format!("queue {queue} is full"));
+                }
+                Some(q) => q.push_back(message.clone()),
+            }
+        }
+        self.publish(Event::Dipc {
+            queue: queue.to_string(),
+            message,
+        });
+        Ok(())
     }
 
     fn lock(&self) -> MutexGuard<'_, Inner> {
@@ -244,7 +365,12 @@ impl SystemState {
             let mut g = self.lock();
             let changed = g.exec != exec;
             g.exec = exec;
-            for t in g.tasks.iter_mut().filter(|t| t.active) {
+            // STATIC and SEMISTATIC tasks are not started or stopped with the program.
+            for t in g
+                .tasks
+                .iter_mut()
+                .filter(|t| t.active && t.task_type == TaskType::Normal)
+            {
                 t.exec_state = task_state;
             }
             (changed, g.cycle, g.tasks.clone())
@@ -276,6 +402,7 @@ impl SystemState {
                 g.cycle = cycle;
             }
             g.want_run = true;
+            g.starts += 1;
         }
         self.set_exec(ExecState::Running, TaskExecState::Started);
         self.log(
@@ -314,6 +441,7 @@ impl SystemState {
                 return Err("the program is running: stop it first".into());
             }
             g.reset_pp = true;
+            g.pp_resets += 1;
         }
         self.set_exec(ExecState::Stopped, TaskExecState::Ready);
         self.log(

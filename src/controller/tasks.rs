@@ -79,6 +79,9 @@ enum Run {
     Ready,
     /// Waiting until this robot time.
     Waiting(RobotTime),
+    /// Real time: blocked outside the scheduler without the baton (the motion task waits
+    /// for room in the motion queue); it becomes ready again by itself.
+    Blocked,
     /// Its program has ended.
     Done,
 }
@@ -118,6 +121,23 @@ struct State {
     idle: Vec<TaskSpec>,
     /// Real time: the clock the tasks without a robot read and sleep on.
     real: Option<Arc<dyn Clock>>,
+    /// Message queues outside the tasks (`rw/dipc` queues of a controller that stays up).
+    external: Option<Arc<dyn ExternalQueues>>,
+}
+
+/// Slot numbers of queues outside the tasks start here (task slots are task numbers).
+pub const EXTERNAL_SLOT_BASE: i32 = 100;
+
+/// Message queues outside the RAPID tasks that `RMQFindSlot` finds by name and
+/// `RMQSendMessage` sends to (a controller's external clients, over `rw/dipc`).
+pub trait ExternalQueues: Send + Sync {
+    /// The slot of the queue called `name`, if there is one.
+    fn slot(&self, name: &str) -> Option<i32>;
+    /// The queue behind `slot`.
+    fn name(&self, slot: i32) -> Option<String>;
+    /// Put a message from task `from` (its queue's name, `RMQ_T_ROB1`) in the queue of
+    /// `slot`; the error says why not.
+    fn send(&self, slot: i32, from: &str, msg: &RmqMessage) -> Result<(), String>;
 }
 
 /// The scheduler of one system's tasks (see the module docs).
@@ -175,6 +195,7 @@ impl Scheduler {
                 next_seq: 0,
                 idle,
                 real: None,
+                external: None,
             }),
             turn: Condvar::new(),
             halt,
@@ -263,6 +284,96 @@ impl Scheduler {
         self.lock().real = Some(clock);
     }
 
+    /// Queues outside the tasks that the tasks may send to (see [`ExternalQueues`]).
+    pub fn use_external_queues(&self, queues: Arc<dyn ExternalQueues>) {
+        self.lock().external = Some(queues);
+    }
+
+    /// A message from outside (`rw/dipc`) to the queue `target` of a task (`RMQ_T_ROB1`,
+    /// or the task's name): `data` is `type;value` as on a controller (`num;42`,
+    /// `string;"go"`), `from` the sender's queue. `None` when `target` names no task.
+    pub fn deliver(
+        &self,
+        target: &str,
+        from: &str,
+        data: &str,
+        userdef: i64,
+    ) -> Option<Result<(), String>> {
+        let mut st = self.lock();
+        let i = Self::index_of(&st, target)?;
+        let slot = st.slots.get(i)?.spec.number;
+        let Some((datatype, value)) = data.split_once(';') else {
+            return Some(Err(format!(
+                "the data of a message to a RAPID task's queue is `type;value` (`num;42`,                  `string;\"text\"`), not `{data}`"
+            )));
+        };
+        let datatype = datatype.trim();
+        let value = value.trim();
+        let Some(lit) = crate::functions::format::parse_value(value) else {
+            return Some(Err(format!(
+                "`{value}` is not the RAPID text of one {datatype} value"
+            )));
+        };
+        let sender = st.external.as_ref().and_then(|e| e.slot(from)).unwrap_or(0);
+        let msg = RmqMessage {
+            datatype: datatype.to_string(),
+            dims: atomic_dims(datatype, &lit),
+            data: value.to_string(),
+            sender,
+            userdef: i32::try_from(userdef).unwrap_or(-1),
+            seq: 0,
+        };
+        let r = Self::enqueue(&mut st, slot, msg).map_err(|e| e.message);
+        drop(st);
+        self.turn.notify_all();
+        Some(r)
+    }
+
+    /// Put `msg` in the queue of the task with number `slot` (see [`TaskHost::rmq_send`]).
+    fn enqueue(st: &mut State, slot: i32, mut msg: RmqMessage) -> Result<(), HostError> {
+        st.next_seq += 1;
+        let seq = st.next_seq;
+        let Some(s) = st.slots.iter_mut().find(|s| s.spec.number == slot) else {
+            return Err(HostError::rapid(
+                errnum::ERR_RMQ_INVALID,
+                format!("slot {slot} is not a running task of this system"),
+            ));
+        };
+        let cfg = &s.spec.config;
+        if cfg.rmq_type == RmqType::None {
+            return Err(HostError::rapid(
+                errnum::ERR_RMQ_INVALID,
+                format!(
+                    "task {} has no RAPID message queue (-RmqType None)",
+                    cfg.name
+                ),
+            ));
+        }
+        if msg.data.len() > cfg.rmq_max_msg_size {
+            return Err(HostError::rapid(
+                errnum::ERR_RMQ_MSGSIZE,
+                format!(
+                    "the message has {} bytes; task {} takes at most {} (-RmqMaxMsgSize)",
+                    msg.data.len(),
+                    cfg.name,
+                    cfg.rmq_max_msg_size
+                ),
+            ));
+        }
+        if s.queue.len() >= cfg.rmq_max_no_of_msg {
+            return Err(HostError::rapid(
+                errnum::ERR_RMQ_FULL,
+                format!(
+                    "the message queue of task {} is full ({} messages, -RmqMaxNoOfMsg)",
+                    cfg.name, cfg.rmq_max_no_of_msg
+                ),
+            ));
+        }
+        msg.seq = seq;
+        s.queue.push_back(msg);
+        Ok(())
+    }
+
     /// The real-time clock's time (`None` in virtual time).
     fn clock_now(&self) -> Option<RobotTime> {
         let clock = self.lock().real.clone()?;
@@ -316,7 +427,7 @@ impl Scheduler {
         match st.slots.get(i).map(|s| s.run) {
             Some(Run::Ready) => true,
             Some(Run::Waiting(d)) => st.finished || d <= st.now,
-            Some(Run::Done) | None => false,
+            Some(Run::Done | Run::Blocked) | None => false,
         }
     }
 
@@ -325,6 +436,10 @@ impl Scheduler {
     fn handover(st: &mut State, from: usize) {
         let n = st.slots.len();
         st.advance = None;
+        if let Some(clock) = &st.real {
+            // Real time: deadlines that have passed are due whoever advanced the time.
+            st.now = st.now.max(clock.now());
+        }
         if n == 0 {
             st.baton = None;
             return;
@@ -395,10 +510,21 @@ impl Scheduler {
         }
     }
 
+    /// The task called `name`, or whose message queue is called `name` (`RMQ_` and the
+    /// task's name, as on a controller).
     fn index_of(st: &State, name: &str) -> Option<usize> {
-        st.slots
-            .iter()
-            .position(|s| s.spec.config.name.eq_ignore_ascii_case(name.trim()))
+        let name = name.trim();
+        let find = |n: &str| {
+            st.slots
+                .iter()
+                .position(|s| s.spec.config.name.eq_ignore_ascii_case(n))
+        };
+        find(name).or_else(|| {
+            name.get(..4)
+                .filter(|p| p.eq_ignore_ascii_case("RMQ_"))
+                .and_then(|_| name.get(4..))
+                .and_then(find)
+        })
     }
 }
 
@@ -489,7 +615,9 @@ impl TaskHost for TaskHandle {
 
     fn rmq_find_slot(&self, name: &str) -> Option<i32> {
         let st = self.sched.lock();
-        let i = Scheduler::index_of(&st, name)?;
+        let Some(i) = Scheduler::index_of(&st, name) else {
+            return st.external.as_ref().and_then(|e| e.slot(name.trim()));
+        };
         let s = st.slots.get(i)?;
         (s.spec.config.rmq_type != RmqType::None).then_some(s.spec.number)
     }
@@ -500,51 +628,29 @@ impl TaskHost for TaskHandle {
             .iter()
             .find(|s| s.spec.number == slot)
             .map(|s| s.spec.config.name.clone())
+            .or_else(|| st.external.as_ref().and_then(|e| e.name(slot)))
     }
 
-    fn rmq_send(&mut self, slot: i32, mut msg: RmqMessage) -> Result<(), HostError> {
+    fn rmq_send(&mut self, slot: i32, msg: RmqMessage) -> Result<(), HostError> {
         let mut st = self.sched.lock();
-        st.next_seq += 1;
-        let seq = st.next_seq;
-        let Some(s) = st.slots.iter_mut().find(|s| s.spec.number == slot) else {
-            return Err(HostError::rapid(
-                errnum::ERR_RMQ_INVALID,
-                format!("slot {slot} is not a running task of this system"),
-            ));
-        };
-        let cfg = &s.spec.config;
-        if cfg.rmq_type == RmqType::None {
-            return Err(HostError::rapid(
-                errnum::ERR_RMQ_INVALID,
-                format!(
-                    "task {} has no RAPID message queue (-RmqType None)",
-                    cfg.name
-                ),
-            ));
+        let outside = !st.slots.iter().any(|s| s.spec.number == slot);
+        if outside && let Some(ext) = st.external.clone() {
+            let from = format!(
+                "RMQ_{}",
+                st.slots
+                    .get(self.me)
+                    .map(|s| s.spec.config.name.as_str())
+                    .unwrap_or_default()
+            );
+            drop(st);
+            if ext.name(slot).is_some() {
+                return ext
+                    .send(slot, &from, &msg)
+                    .map_err(|m| HostError::rapid(errnum::ERR_RMQ_FULL, m));
+            }
+            st = self.sched.lock();
         }
-        if msg.data.len() > cfg.rmq_max_msg_size {
-            return Err(HostError::rapid(
-                errnum::ERR_RMQ_MSGSIZE,
-                format!(
-                    "the message has {} bytes; task {} takes at most {} (-RmqMaxMsgSize)",
-                    msg.data.len(),
-                    cfg.name,
-                    cfg.rmq_max_msg_size
-                ),
-            ));
-        }
-        if s.queue.len() >= cfg.rmq_max_no_of_msg {
-            return Err(HostError::rapid(
-                errnum::ERR_RMQ_FULL,
-                format!(
-                    "the message queue of task {} is full ({} messages, -RmqMaxNoOfMsg)",
-                    cfg.name, cfg.rmq_max_no_of_msg
-                ),
-            ));
-        }
-        msg.seq = seq;
-        s.queue.push_back(msg);
-        Ok(())
+        Scheduler::enqueue(&mut st, slot, msg)
     }
 
     fn rmq_take(&mut self) -> Option<RmqMessage> {
@@ -619,13 +725,51 @@ impl TaskedHost {
     fn sleep_until(&self, until: RobotTime) -> Result<RobotTime, HostError> {
         let sched = &self.task.sched;
         while let Some(now) = sched.clock_now() {
-            if now >= until || sched.check_outside() {
+            if now >= until || sched.check_outside() || self.others_ready() {
                 return Ok(now);
             }
             let left = until.saturating_since(now);
             std::thread::sleep(left.min(std::time::Duration::from_millis(10)));
         }
         Ok(until)
+    }
+
+    /// True when another task is ready to run (one that was blocked outside the scheduler).
+    fn others_ready(&self) -> bool {
+        let st = self.task.sched.lock();
+        st.slots
+            .iter()
+            .enumerate()
+            .any(|(i, s)| i != self.task.me && s.run == Run::Ready)
+    }
+
+    /// Real time: run `f` without the baton (the other tasks run meanwhile), then take the
+    /// baton back. For what blocks on something outside the tasks (room in the motion
+    /// queue), so that it blocks only this task. In virtual time `f` runs with the baton.
+    fn unscheduled<T>(&mut self, f: impl FnOnce(&mut Self) -> T) -> T {
+        let sched = Arc::clone(&self.task.sched);
+        let me = self.task.me;
+        if sched.clock_now().is_none() {
+            return f(self);
+        }
+        {
+            let mut st = sched.lock();
+            if let Some(s) = st.slots.get_mut(me) {
+                s.run = Run::Blocked;
+            }
+            Scheduler::handover(&mut st, me);
+            sched.turn.notify_all();
+        }
+        let r = f(self);
+        let mut st = sched.lock();
+        if let Some(s) = st.slots.get_mut(me) {
+            s.run = Run::Ready;
+        }
+        if st.baton.is_none() {
+            st.baton = Some(me);
+        }
+        drop(sched.wait_turn(st, me));
+        r
     }
 
     fn not_motion(&self, what: &str) -> HostError {
@@ -776,7 +920,8 @@ impl Host for TaskedHost {
         if !self.motion {
             return Err(self.not_motion("a move instruction"));
         }
-        self.inner.motion_submit(cmd)
+        // In real time the move may wait for room in the motion queue: only this task waits.
+        self.unscheduled(|h| h.inner.motion_submit(cmd))
     }
 
     fn motion_reached(&mut self, wait: MotionWait) -> Result<bool, HostError> {
@@ -899,6 +1044,26 @@ pub fn run_tasks<R: Send>(
             })
             .collect()
     })
+}
+
+/// The sizes of an array of an atomic type written as RAPID text (`num;[1,2,3]`); a record
+/// or a single value has none (a record's brackets are its fields).
+fn atomic_dims(datatype: &str, lit: &crate::functions::format::LitValue) -> Vec<u32> {
+    use crate::functions::format::LitValue;
+    let atomic = ["num", "dnum", "bool", "string", "byte"]
+        .iter()
+        .any(|t| t.eq_ignore_ascii_case(datatype));
+    let mut dims = Vec::new();
+    let mut at = lit;
+    while atomic && dims.len() < 3 {
+        let LitValue::List(items) = at else { break };
+        dims.push(u32::try_from(items.len()).unwrap_or(u32::MAX));
+        match items.first() {
+            Some(first) => at = first,
+            None => break,
+        }
+    }
+    dims
 }
 
 #[cfg(test)]

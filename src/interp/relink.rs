@@ -250,7 +250,10 @@ impl Interp {
                 }
             }
         }
-        Ok(())
+        self.relink_shared().map_err(|message| LinkError {
+            errno: errnum::ERR_LINKREF,
+            message,
+        })
     }
 
     /// The loader, or the error of an instruction that needs one.

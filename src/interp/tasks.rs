@@ -69,9 +69,22 @@ impl Interp {
     /// it first) takes the store's value; one it does not hold yet is added with this
     /// task's initial value.
     pub fn set_task_link(&mut self, store: Arc<SharedPers>, slice: u64) {
-        let prog = self.prog.clone();
-        let slots: Vec<(usize, String)> = prog
-            .globals
+        let slots = self.shared_slots();
+        self.join_store(&store, &slots);
+        let slice = slice.max(1);
+        self.task = Some(Box::new(TaskLink {
+            store,
+            slots,
+            slice,
+            next_switch: self.steps + slice,
+        }));
+        self.update_poll();
+    }
+
+    /// (global index, upper-case name) of the program's task-global persistents.
+    fn shared_slots(&self) -> Vec<(usize, String)> {
+        let prog = &self.prog;
+        prog.globals
             .iter()
             .enumerate()
             .filter(|(_, g)| g.storage == Storage::Pers && !g.task)
@@ -82,9 +95,14 @@ impl Interp {
                 _ => false,
             })
             .map(|(i, g)| (i, g.name.to_ascii_uppercase()))
-            .collect();
+            .collect()
+    }
+
+    /// Share `slots` through `store`: one the store holds takes the store's value, one it
+    /// does not hold yet is added with this task's value.
+    fn join_store(&mut self, store: &SharedPers, slots: &[(usize, String)]) {
         if let Ok(mut map) = store.values.lock() {
-            for (i, key) in &slots {
+            for (i, key) in slots {
                 match map.get(key) {
                     Some(v) => {
                         if let Some(slot) = self.globals.get_mut(*i) {
@@ -99,14 +117,40 @@ impl Interp {
                 }
             }
         }
-        let slice = slice.max(1);
-        self.task = Some(Box::new(TaskLink {
-            store,
-            slots,
-            slice,
-            next_switch: self.steps + slice,
-        }));
-        self.update_poll();
+    }
+
+    /// After `Load` changed the program: the task-global persistents of the loaded modules
+    /// are shared by name as those of the boot (one another task has keeps that task's
+    /// value). A name another task holds with another shape of data is refused, as loading
+    /// a system with it is (`Err`: the message).
+    pub(crate) fn relink_shared(&mut self) -> Result<(), String> {
+        let Some(link) = self.task.as_ref() else {
+            return Ok(());
+        };
+        let store = Arc::clone(&link.store);
+        let known: Vec<String> = link.slots.iter().map(|s| s.1.clone()).collect();
+        let slots = self.shared_slots();
+        let added: Vec<(usize, String)> = slots
+            .iter()
+            .filter(|s| !known.contains(&s.1))
+            .cloned()
+            .collect();
+        for (i, key) in &added {
+            if let (Some(shared), Some(own)) = (store.get(key), self.globals.get(*i))
+                && !same_shape(&shared, own)
+            {
+                let name = self.prog.globals.get(*i).map_or(key.as_str(), |g| &g.name);
+                return Err(format!(
+                    "the persistent `{name}` of the loaded module is a task-global PERS of \
+                     another type or size in another task (declare it alike, or TASK PERS)"
+                ));
+            }
+        }
+        self.join_store(&store, &added);
+        if let Some(link) = self.task.as_mut() {
+            link.slots = slots;
+        }
+        Ok(())
     }
 
     /// Write this task's shared persistents to the store (before handing the baton over).
@@ -174,5 +218,23 @@ impl Interp {
     /// The step count at which the next hand-over is due (`u64::MAX` for a single task).
     pub(crate) fn next_task_switch(&self) -> u64 {
         self.task.as_ref().map_or(u64::MAX, |l| l.next_switch)
+    }
+}
+
+/// True when `a` and `b` are values of the same shape (kind, record length, array sizes).
+fn same_shape(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Record(x), Value::Record(y)) => {
+            x.len() == y.len() && x.iter().zip(y.iter()).all(|(p, q)| same_shape(p, q))
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            x.dims == y.dims
+                && x.rank == y.rank
+                && x.data
+                    .first()
+                    .zip(y.data.first())
+                    .is_none_or(|(p, q)| same_shape(p, q))
+        }
+        _ => std::mem::discriminant(a) == std::mem::discriminant(b),
     }
 }

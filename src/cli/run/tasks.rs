@@ -53,20 +53,115 @@ struct TaskEnd {
     egm: Option<crate::controller::egm_controller::EgmController>,
 }
 
-/// Run the system (see the module docs).
-pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
+/// The motion task's controller (robot, traces, plots, EGM), when a task moves the robot;
+/// and whether `--egm-log` is written.
+pub(crate) fn start_motion_controller(
+    args: &RunArgs,
+    tasks: &[crate::program::system::TaskProgram],
+    sources: &Arc<SourceMap>,
+    config: &crate::config::Config,
+    signals: &Arc<crate::signals::SignalTable>,
+    uses_sockets: bool,
+) -> Result<(Option<super::StartedController>, bool), String> {
+    let Some(prog) = tasks
+        .iter()
+        .find(|t| t.config.motion)
+        .and_then(|t| t.program.clone())
+    else {
+        return Ok((None, false));
+    };
+    let devices = egm_options::device_use(&prog);
+    egm_options::check_devices(&args.egm, &devices)?
+        .iter()
+        .for_each(|w| eprintln!("warning: {w}"));
+    let uses_egm = egm_options::uses_egm(&prog, sources);
+    let c = super::start_controller(
+        args,
+        sources,
+        config,
+        signals,
+        uses_egm.then_some(&devices),
+        uses_sockets,
+        None,
+    )?;
+    let written = c.2;
+    Ok((Some(c), written))
+}
+
+/// The scheduler's view of the running tasks and of the idle ones (with their numbers).
+pub(crate) fn task_specs(
+    tasks: &[crate::program::system::TaskProgram],
+    idle: &[crate::config::sys::TaskConfig],
+    config: &crate::config::Config,
+) -> (Vec<TaskSpec>, Vec<TaskSpec>) {
+    let specs = tasks
+        .iter()
+        .map(|t| TaskSpec {
+            config: t.config.clone(),
+            number: t.number as i32,
+        })
+        .collect();
+    let idle_specs = idle
+        .iter()
+        .map(|c| TaskSpec {
+            config: c.clone(),
+            number: config
+                .sys
+                .tasks
+                .iter()
+                .position(|t| t.name == c.name)
+                .map_or(0, |i| i as i32 + 1),
+        })
+        .collect();
+    (specs, idle_specs)
+}
+
+/// The host of a task that does not move the robot: signals, system data, output.
+pub(crate) fn plain_host(
+    signals: &Arc<crate::signals::SignalTable>,
+    services: crate::system::Services,
+    sink: impl FnMut(&crate::interp::Output) + Send + 'static,
+) -> Box<dyn Host + Send> {
+    Box::new(
+        VirtualHost::new()
+            .with_signals(Arc::clone(signals))
+            .with_system(services)
+            .with_sink(sink),
+    )
+}
+
+/// Load and check the system of `args` (diagnostics printed, what is not supported refused,
+/// idle tasks noted), and read the operator's answers. `Err`: the exit code.
+pub(crate) fn load_checked(
+    args: &RunArgs,
+) -> Result<(LoadedSystem, crate::interp::operator::Operator), ExitCode> {
     let loaded = load_system(&args.files, args.config.as_deref());
     render::diagnostics(&loaded.diags, &loaded.sources);
     if !loaded.ok() {
-        return ExitCode::from(2);
+        return Err(ExitCode::from(2));
     }
-    if let Some(msg) = refuse(&args, &loaded) {
+    if let Some(msg) = refuse(args, &loaded) {
         eprintln!("error: {msg}");
-        return ExitCode::from(2);
+        return Err(ExitCode::from(2));
     }
     for idle in &loaded.idle {
         eprintln!("note: task {} has no modules; it does not run", idle.name);
     }
+    match answers::read(args.answers.as_deref()) {
+        Ok(file) => Ok((loaded, answers::operator(file.as_ref(), None))),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            Err(ExitCode::from(2))
+        }
+    }
+}
+
+/// Run the system (see the module docs).
+pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
+    let (loaded, operator) = match load_checked(&args) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
     let uses_sockets = tasks_use_sockets(&loaded);
     if uses_sockets || args.realtime || args.view.needs_realtime() {
         eprintln!(
@@ -74,13 +169,6 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         );
         return ExitCode::from(2);
     }
-    let operator = match answers::read(args.answers.as_deref()) {
-        Ok(file) => answers::operator(file.as_ref(), None),
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return ExitCode::from(2);
-        }
-    };
     let LoadedSystem {
         sources,
         tasks,
@@ -96,61 +184,17 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
     let home = args.home.clone().or(home);
     let storage = Arc::new(MassStorage::new(home));
     let system = super::system_services(&args, &config, &sources);
-    // The motion task's controller (robot, traces, plots, EGM).
     let motion = tasks.iter().position(|t| t.config.motion);
-    let mut controller = None;
-    let mut egm_log_written = false;
-    if let Some(m) = motion
-        && let Some(prog) = tasks.get(m).and_then(|t| t.program.clone())
-    {
-        let devices = egm_options::device_use(&prog);
-        match egm_options::check_devices(&args.egm, &devices) {
-            Ok(warnings) => warnings.iter().for_each(|w| eprintln!("warning: {w}")),
+    let (mut controller, egm_log_written) =
+        match start_motion_controller(&args, &tasks, &sources, &config, &signals, false) {
+            Ok(c) => c,
             Err(msg) => {
                 eprintln!("error: {msg}");
                 return ExitCode::from(2);
             }
-        }
-        let uses_egm = egm_options::uses_egm(&prog, &sources);
-        match super::start_controller(
-            &args,
-            &sources,
-            &config,
-            &signals,
-            uses_egm.then_some(&devices),
-            false,
-            None,
-        ) {
-            Ok(c) => {
-                egm_log_written = c.2;
-                controller = Some(c);
-            }
-            Err(msg) => {
-                eprintln!("error: {msg}");
-                return ExitCode::from(2);
-            }
-        }
-    }
+        };
     let halt = Arc::new(AtomicBool::new(false));
-    let specs: Vec<TaskSpec> = tasks
-        .iter()
-        .map(|t| TaskSpec {
-            config: t.config.clone(),
-            number: t.number as i32,
-        })
-        .collect();
-    let idle_specs: Vec<TaskSpec> = idle
-        .iter()
-        .map(|c| TaskSpec {
-            config: c.clone(),
-            number: config
-                .sys
-                .tasks
-                .iter()
-                .position(|t| t.name == c.name)
-                .map_or(0, |i| i as i32 + 1),
-        })
-        .collect();
+    let (specs, idle_specs) = task_specs(&tasks, &idle, &config);
     let sched = Scheduler::new(
         specs,
         idle_specs,
@@ -180,12 +224,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
             ),
             (_, ctl) => {
                 controller = ctl;
-                Box::new(
-                    VirtualHost::new()
-                        .with_signals(Arc::clone(&signals))
-                        .with_system(services)
-                        .with_sink(print_output),
-                )
+                plain_host(&signals, services, print_output)
             }
         };
         let host = TaskedHost::new(
@@ -256,14 +295,37 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         }));
     }
     let ends = run_tasks(&sched, bodies);
+    let code = exit_code(
+        ends.into_iter().map(|e| e.map(|e| (e.code, e.egm))),
+        &args,
+        egm_log_written,
+    );
+    if interrupted.load(Ordering::Relaxed) {
+        return ExitCode::from(interrupt::EXIT_INTERRUPTED);
+    }
+    code
+}
+
+/// The exit code of a system's run from its tasks' (code, EGM side) — `None` for a task
+/// whose thread failed — after finishing the EGM side (`--egm-log`).
+pub(crate) fn exit_code(
+    ends: impl Iterator<
+        Item = Option<(
+            ExitCode,
+            Option<crate::controller::egm_controller::EgmController>,
+        )>,
+    >,
+    args: &RunArgs,
+    egm_log_written: bool,
+) -> ExitCode {
     let mut code = ExitCode::SUCCESS;
     for end in ends {
         match end {
-            Some(e) => {
-                if e.code != ExitCode::SUCCESS {
-                    code = e.code;
+            Some((c, egm)) => {
+                if c != ExitCode::SUCCESS {
+                    code = c;
                 }
-                if let Some(egm) = e.egm
+                if let Some(egm) = egm
                     && let Err(msg) = egm_options::finish(egm, &args.egm, egm_log_written)
                 {
                     eprintln!("error: {msg}");
@@ -275,9 +337,6 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                 code = ExitCode::from(1);
             }
         }
-    }
-    if interrupted.load(Ordering::Relaxed) {
-        return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
 }

@@ -14,7 +14,7 @@ use crate::ast::Storage;
 use crate::controller::ControllerHost;
 use crate::controller::service::{
     Coordinate, CycleMode, Event, MechUnitInfo, ModuleInfo, OpMode, Request, RobotState,
-    ServiceError, SymbolClass, SymbolInfo, SymbolPath,
+    ServiceError, SymbolClass, SymbolInfo, SymbolPath, TaskExecState,
 };
 use crate::events::EventKind;
 use crate::interp::data_access::{DataSymbol, DataWriteError};
@@ -32,8 +32,21 @@ pub struct ProgramSide {
     /// The last published value of every persistent (by global index).
     pers: Vec<(usize, String)>,
     last_poll: Instant,
+    /// One task of a system of several (see [`ProgramSide::in_system`]).
+    system: Option<InSystem>,
     /// The speed ratio the robot was last given (percent).
     ratio: u8,
+}
+
+/// What a task of a system of several tasks keeps: its own view of resets and starts, and
+/// whether it is a STATIC or SEMISTATIC task (it runs from boot, whatever the panel does).
+#[derive(Debug, Clone, Copy)]
+struct InSystem {
+    background: bool,
+    /// The program-pointer resets this task has acted on.
+    pp_seen: u64,
+    /// The start whose cycle this task has ended (it waits for the next start).
+    ended_in: Option<u64>,
 }
 
 impl std::fmt::Debug for ProgramSide {
@@ -67,7 +80,58 @@ impl ProgramSide {
             task: task.to_string(),
             pers: Vec::new(),
             last_poll: Instant::now(),
+            system: None,
             ratio: 100,
+        }
+    }
+
+    /// One task of a system of several: it hands the processor to the other tasks while it
+    /// is stopped or idle (its host's waits do), acts on its own copy of the program-pointer
+    /// resets, and, when `background` (STATIC, SEMISTATIC), runs from boot whatever the
+    /// panel does (as on a controller, the stop button does not stop it).
+    pub fn in_system(mut self, background: bool) -> ProgramSide {
+        self.system = Some(InSystem {
+            background,
+            pp_seen: self.state.pp_resets(),
+            ended_in: None,
+        });
+        self
+    }
+
+    /// True when this task is to run now.
+    fn runs(&self) -> bool {
+        match self.system {
+            None => self.state.want_run(),
+            Some(s) if s.background => true,
+            Some(s) => {
+                self.state.want_run()
+                    && self.state.task_active(&self.task)
+                    && s.ended_in != Some(self.state.starts())
+            }
+        }
+    }
+
+    /// True when a program-pointer reset waits for this task.
+    fn reset_pending(&self) -> bool {
+        match self.system {
+            None => self.state.reset_pp_pending(),
+            Some(s) => !s.background && s.pp_seen != self.state.pp_resets(),
+        }
+    }
+
+    /// Take a waiting program-pointer reset.
+    fn take_reset(&mut self) -> bool {
+        let resets = self.state.pp_resets();
+        match self.system.as_mut() {
+            None => self.state.take_reset_pp(),
+            Some(s) => {
+                let was = s.pp_seen != resets;
+                s.pp_seen = resets;
+                if was {
+                    s.ended_in = None;
+                }
+                was && !s.background
+            }
         }
     }
 
@@ -283,6 +347,16 @@ impl ProgramSide {
 
     /// Block until a request arrives or `timeout` passes, then answer what waits.
     fn idle(&mut self, it: &mut Interp, timeout: Duration) {
+        if self.system.is_some() {
+            // The other tasks run meanwhile: wait through the host (it hands the processor
+            // over), answering what came first.
+            self.serve(it);
+            let until = it.host_mut().now().after_secs(timeout.as_secs_f64());
+            if it.host_wait_until(until).is_err() {
+                std::thread::sleep(timeout);
+            }
+            return;
+        }
         match self.requests.recv_timeout(timeout) {
             Ok(req) => self.answer(it, req),
             Err(RecvTimeoutError::Timeout | RecvTimeoutError::Disconnected) => {}
@@ -293,10 +367,10 @@ impl ProgramSide {
     /// The interpreter's service hook: between statements and in waits.
     fn between(&mut self, it: &mut Interp) -> HookAction {
         self.serve(it);
-        if self.state.shutting_down() || self.state.reset_pp_pending() {
+        if self.state.shutting_down() || self.reset_pending() {
             return HookAction::Stop;
         }
-        if self.state.want_run() {
+        if self.runs() {
             return HookAction::Continue;
         }
         // Stopped: hold the robot, keep the program pointer, wait here.
@@ -305,10 +379,10 @@ impl ProgramSide {
         }
         self.update_robot(it);
         loop {
-            if self.state.shutting_down() || self.state.reset_pp_pending() {
+            if self.state.shutting_down() || self.reset_pending() {
                 return HookAction::Stop;
             }
-            if self.state.want_run() {
+            if self.runs() {
                 if let Some(h) = host(it)
                     && let Err(e) = h.resume_motion()
                 {
@@ -401,17 +475,22 @@ pub fn run_program(it: &mut Interp, entry: &str, side: ProgramSide) {
         })));
     }
     let state = Arc::clone(&lock(&side).state);
+    let task = lock(&side).task.clone();
+    let background = lock(&side).system.is_some_and(|s| s.background);
     lock(&side).prime(it);
     loop {
         // Idle: the program pointer is at main.
-        while !state.shutting_down() && !state.want_run() {
+        while !state.shutting_down() && !lock(&side).runs() {
             lock(&side).idle(it, Duration::from_millis(10));
-            state.take_reset_pp();
+            lock(&side).take_reset();
         }
         if state.shutting_down() {
             break;
         }
-        state.take_reset_pp();
+        lock(&side).take_reset();
+        if background {
+            state.set_task_state(&task, TaskExecState::Started);
+        }
         let outcome = it.run(entry);
         if state.shutting_down() {
             break;
@@ -422,18 +501,48 @@ pub fn run_program(it: &mut Interp, entry: &str, side: ProgramSide) {
                 format!("{} ({:?})", e.message, e.kind),
             );
         }
+        if background {
+            // A STATIC or SEMISTATIC task whose entry routine returns has ended: it stays
+            // (answering services) until the controller shuts down.
+            let exec = if outcome.is_ok() {
+                TaskExecState::Ready
+            } else {
+                TaskExecState::Stopped
+            };
+            state.set_task_state(&task, exec);
+            state.log(
+                EventKind::ProgramStopped,
+                format!("task {task}: {}", ended(&outcome)),
+            );
+            while !state.shutting_down() {
+                lock(&side).idle(it, Duration::from_millis(10));
+            }
+            break;
+        }
         let again = matches!(outcome, Ok(Outcome::Completed | Outcome::ExitCycle))
             && state.cycle() == CycleMode::Forever
-            && state.want_run()
-            && !state.reset_pp_pending();
+            && lock(&side).runs()
+            && !lock(&side).reset_pending();
         if again {
             continue;
         }
         if let Some(h) = host(it) {
             h.forget_motion();
         }
-        if state.take_reset_pp() {
+        if lock(&side).take_reset() {
             continue;
+        }
+        let in_system = lock(&side).system.is_some();
+        if in_system {
+            // This task's cycle has ended; the program has ended when every active NORMAL
+            // task's has (an error stops them all).
+            if let Some(s) = lock(&side).system.as_mut() {
+                s.ended_in = Some(state.starts());
+            }
+            state.set_task_state(&task, TaskExecState::Ready);
+            if outcome.is_ok() && !state.normal_tasks_idle() {
+                continue;
+            }
         }
         state.run_ended(&ended(&outcome));
         state.log(

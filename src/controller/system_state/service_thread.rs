@@ -281,15 +281,9 @@ fn answer(
             message,
             reply,
         } => {
-            let is_task = state
-                .tasks()
-                .iter()
-                .any(|t| t.name.eq_ignore_ascii_case(&target));
-            let r = if is_task {
-                not_allowed(format!(
-                    "sending to task {target}: RAPID's message queues (RMQ) are not supported \
-                     by rapidvc yet"
-                ))
+            let to_task = state.deliver_to_task(&target, &message);
+            let r = if let Some(r) = to_task {
+                r.or_else(not_allowed)
             } else {
                 let mut g = state.lock();
                 match g.queues.get_mut(&target) {

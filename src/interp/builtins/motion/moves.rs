@@ -94,7 +94,12 @@ fn submit_corr(
     corr: Option<usize>,
 ) -> Exec<Value> {
     let stop_point = cmd.args().zone.finep && !cx.present(CONC);
-    let id = cx.host().motion_submit(cmd).map_err(|e| cx.host_err(e))?;
+    // Among several tasks in real time the host may let the other tasks run while the move
+    // waits for room in the motion queue: the shared persistents go with the baton.
+    cx.it.publish_shared();
+    let submitted = cx.host().motion_submit(cmd);
+    cx.it.fetch_shared();
+    let id = submitted.map_err(|e| cx.host_err(e))?;
     if corr.is_some_and(|i| cx.present(i)) {
         crate::interp::builtins::path_recovery::mark_corr(cx, id)?;
     }
