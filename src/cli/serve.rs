@@ -139,7 +139,7 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
             ],
             serial: system.info.serial.clone(),
         },
-        cfg: system.cfg.clone(),
+        cfg: crate::system::backup_defaults::completed(&system.cfg, &system.info, MOTION_TASK),
         roots,
         signals: Arc::clone(&loaded.signals),
     };
