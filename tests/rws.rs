@@ -20,16 +20,12 @@ fn start(tag: &str) -> Serve {
 }
 
 fn login(srv: &Serve) -> Client {
-    let mut c = Client::new(srv.addr, "Default User", "robotics");
-    let r = c.get("/rw/panel/ctrlstate?json=1");
-    assert_eq!(r.status, 200, "{}", r.text());
-    c
+    Client::login(srv.addr)
 }
 
 /// The first `_state` entry of a resource in the JSON representation.
 fn state(c: &mut Client, path: &str) -> serde_json::Value {
-    let sep = if path.contains('?') { '&' } else { '?' };
-    c.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
+    c.state(path)
 }
 
 /// Joint 1 of the robot, in degrees, as served.
@@ -630,13 +626,7 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
             >= 400
     );
     // The event log holds what happened, numbered.
-    let log = c.get("/rw/elog/0?json=1").json();
-    let codes: Vec<String> = log["_embedded"]["_state"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|e| e["code"].as_str().unwrap().to_string())
-        .collect();
+    let codes = c.elog_codes();
     for want in ["10150", "10151", "10002", "10010"] {
         assert!(codes.iter().any(|c| c == want), "{want} in {codes:?}");
     }
@@ -674,32 +664,47 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
 }
 
 #[test]
-fn the_speed_ratio_scales_the_moves_planned_after_it() {
+fn the_speed_ratio_scales_the_moves_planned_after_it_and_those_under_way() {
     let srv = start_moves("speedratio");
     let mut c = login(&srv);
-    let timed_run = |c: &mut Client| -> f64 {
+    let set_ratio = |c: &mut Client, percent: u32| {
+        let r = c.post(
+            "/rw/panel/speedratio?action=setspeedratio",
+            &format!("speed-ratio={percent}"),
+        );
+        assert_eq!(r.status, 204);
+    };
+    // One run of `moves`; with `half_from`, the ratio goes to 50 % once the timed move
+    // (0° → 30°) has passed that joint-1 angle.
+    let timed_run = |c: &mut Client, half_from: Option<f64>| -> f64 {
         start_program(c, "once");
+        if let Some(at) = half_from {
+            // Home first (the last run left the robot at 30°), then on the timed move.
+            within(10, "the robot goes home", || j1(c) < at - 1.0);
+            within(10, "the robot moves", || j1(c) > at);
+            set_ratio(c, 50);
+        }
         within(30, "the run ends", || reached(c) && stopped(c));
-        c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/move_time?json=1")
-            .json()["_embedded"]["_state"][0]["value"]
+        state(c, "/rw/rapid/symbol/data/RAPID/T_ROB1/move_time")["value"]
             .as_str()
             .unwrap()
             .parse()
             .unwrap()
     };
-    let full = timed_run(&mut c);
-    assert_eq!(
-        c.post(
-            "/rw/panel/speedratio?action=setspeedratio",
-            "speed-ratio=50"
-        )
-        .status,
-        204
-    );
-    let half = timed_run(&mut c);
+    let full = timed_run(&mut c, None);
+    set_ratio(&mut c, 50);
+    let half = timed_run(&mut c, None);
     // Robot time measured by the program in one run: the ratio, not wall-clock figures.
     let ratio = half / full;
     assert!((1.6..2.4).contains(&ratio), "{half} s / {full} s = {ratio}");
+    // Set while the move runs (from 3° of its 30°): the rest of it at half speed.
+    set_ratio(&mut c, 100);
+    let slowed = timed_run(&mut c, Some(3.0));
+    let ratio = slowed / full;
+    assert!(
+        (1.5..2.3).contains(&ratio),
+        "{slowed} s / {full} s = {ratio}"
+    );
 }
 
 #[test]

@@ -186,6 +186,33 @@ impl Client {
         self.request("GET", path, b"")
     }
 
+    /// A client of `Default User` that has logged in (its first request answered 200).
+    pub fn login(addr: SocketAddr) -> Client {
+        let mut c = Client::new(addr, "Default User", "robotics");
+        let r = c.get("/rw/panel/ctrlstate?json=1");
+        assert_eq!(r.status, 200, "{}", r.text());
+        c
+    }
+
+    /// The first `_state` entry of a resource in the JSON representation.
+    pub fn state(&mut self, path: &str) -> serde_json::Value {
+        let sep = if path.contains('?') { '&' } else { '?' };
+        self.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
+    }
+
+    /// The event log's codes (`rw/elog/0`), oldest first as served.
+    pub fn elog_codes(&mut self) -> Vec<String> {
+        let log = self.get("/rw/elog/0?json=1").json();
+        log["_embedded"]["_state"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|e| e["code"].as_str().map(str::to_string))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
     pub fn post(&mut self, path: &str, form: &str) -> Resp {
         self.request("POST", path, form.as_bytes())
     }
