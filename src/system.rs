@@ -9,6 +9,7 @@
 //! (`interp::VirtualHost`, and `controller::ControllerHost` through it) and hand it to the
 //! natives through `Host::system`.
 
+pub mod backup_defaults;
 pub mod calendar;
 pub mod cfg_data;
 pub mod info;

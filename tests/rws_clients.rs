@@ -1,7 +1,8 @@
 //! Robot Web Services of a real `rapidvc serve` driven by abb_robot_client's `RWS` class
 //! (PyPI, unchanged): every call it makes, a subscription receiving signal, execution,
 //! persistent and event-log events over the WebSocket, and the XHTML resources abb_librws
-//! reads, parsed with a DOM parser (`tests/clients/rws_client.py`).
+//! reads, parsed with a DOM parser (`tests/clients/rws_client.py`), and the start-up of
+//! abb_librws / abb_egm_rws_managers replayed in their order (`tests/clients/librws_startup.py`).
 //!
 //! Needs `RAPIDVC_PYTHON` when the tests are built (see `build.rs`); ends by itself (the
 //! script's own waits are bounded, and the children are killed after a time-out).
@@ -15,22 +16,41 @@ use std::time::Duration;
 
 use procs::{Proc, python, root};
 
+/// Serve `program` and run the Python client `script` against it (its URL, then `args`);
+/// the script must end with "ALL OK" within `secs`.
+fn client_passes(
+    tag: &str,
+    program: &str,
+    serve_args: &[&str],
+    script: &str,
+    args: &[String],
+    secs: u64,
+) {
+    let srv = Serve::start(rapidvc_testkit::rapidvc!(), tag, program, serve_args);
+    let mut cmd = Command::new(python());
+    cmd.arg(root().join(script)).arg(srv.url()).args(args);
+    let ended = Proc::spawn(cmd).wait(Duration::from_secs(secs));
+    assert!(
+        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
+        "stdout:\n{}\nstderr:\n{}",
+        ended.stdout,
+        ended.stderr
+    );
+}
+
 #[test]
 #[cfg_attr(
     not(rapidvc_python),
     ignore = "needs RAPIDVC_PYTHON (a Python with abb_robot_client) when the tests are built"
 )]
 fn abb_robot_client_drives_every_resource_it_uses() {
-    let srv = Serve::start(rapidvc_testkit::rapidvc!(), "pyclient", "tests/serve", &[]);
-    let mut cmd = Command::new(python());
-    cmd.arg(root().join("tests/clients/rws_client.py"))
-        .arg(srv.url());
-    let ended = Proc::spawn(cmd).wait(Duration::from_secs(90));
-    assert!(
-        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
-        "stdout:\n{}\nstderr:\n{}",
-        ended.stdout,
-        ended.stderr
+    client_passes(
+        "pyclient",
+        "tests/serve",
+        &[],
+        "tests/clients/rws_client.py",
+        &[],
+        90,
     );
 }
 
@@ -62,22 +82,32 @@ fn rws_and_egm_script(tag: &str, script: &str) {
         .unwrap()
         .port();
     let device = format!("--device=sensor=127.0.0.1:{port}");
-    let srv = Serve::start(
-        rapidvc_testkit::rapidvc!(),
+    client_passes(
         tag,
         "tests/serve_egm",
         &[device.as_str()],
+        script,
+        &[port.to_string()],
+        150,
     );
-    let mut cmd = Command::new(python());
-    cmd.arg(root().join(script))
-        .arg(srv.url())
-        .arg(port.to_string());
-    let ended = Proc::spawn(cmd).wait(Duration::from_secs(150));
-    assert!(
-        ended.code == Some(0) && ended.stdout.contains("ALL OK"),
-        "stdout:\n{}\nstderr:\n{}",
-        ended.stdout,
-        ended.stderr
+}
+
+#[test]
+#[cfg_attr(
+    not(rapidvc_python),
+    ignore = "needs RAPIDVC_PYTHON (a Python with requests) when the tests are built"
+)]
+fn abb_librws_and_the_rws_manager_start_up_read_every_field_they_parse() {
+    // The requests of abb_librws / abb_egm_rws_managers in their order, read as they read
+    // them, and the robtarget of every tool, work object and coordinate system compared with
+    // CRobT computed by the program (tests/clients/librws_startup.py).
+    client_passes(
+        "librws",
+        "tests/serve_librws",
+        &[],
+        "tests/clients/librws_startup.py",
+        &[],
+        90,
     );
 }
 

@@ -109,7 +109,7 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let info = serve_info(&system, system.cfg.clone(), roots, &loaded.signals);
+    let info = serve_info(&system, roots, &loaded.signals);
     let calendar = system.calendar;
     let sources = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
@@ -288,7 +288,6 @@ fn start_rws(
 /// What the controller says about itself over RWS.
 fn serve_info(
     system: &crate::system::Services,
-    cfg: crate::system::cfg_data::CfgData,
     roots: Vec<(String, std::path::PathBuf)>,
     signals: &Arc<crate::signals::SignalTable>,
 ) -> ServeInfo {
@@ -306,7 +305,8 @@ fn serve_info(
             ],
             serial: system.info.serial.clone(),
         },
-        cfg,
+        // What the configuration files lack is served as a single-robot backup has it.
+        cfg: crate::system::backup_defaults::completed(&system.cfg, &system.info, MOTION_TASK),
         roots,
         signals: Arc::clone(signals),
     }

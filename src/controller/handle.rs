@@ -142,6 +142,15 @@ impl ControllerHandle {
         matches!(self.driver, Driver::RealTime(_))
     }
 
+    /// The motion thread's lock-free position cell (real time only): services read the
+    /// latest cycle's position from it without waiting for the program.
+    pub fn position_cell(&self) -> Option<Arc<super::position_cell::PositionCell>> {
+        match &self.driver {
+            Driver::Virtual(_) => None,
+            Driver::RealTime(r) => Some(Arc::clone(&r.shared.position)),
+        }
+    }
+
     /// The current robot time.
     pub fn now(&mut self) -> RobotTime {
         self.state().setpoint.time

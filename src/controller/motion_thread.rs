@@ -62,6 +62,8 @@ pub(super) struct Published {
 pub(super) struct Shared {
     pub published: Mutex<Published>,
     pub changed: Condvar,
+    /// The latest setpoint's position, for services (lock-free: never blocks the cycle).
+    pub position: Arc<super::position_cell::PositionCell>,
 }
 
 /// What the motion thread hands back when it ends.
@@ -116,6 +118,9 @@ impl RtLoop {
                 h.after_tick(&sp, &mut self.exec);
             }
             ticks += 1;
+            self.shared
+                .position
+                .store(sp.time.as_secs_f64(), &sp.joints);
             if let Err(TrySendError::Full(_)) = self.records.try_send(sp) {
                 dropped_records += 1;
             }

@@ -66,6 +66,7 @@ impl RealTimeDriver {
                 running: true,
             }),
             changed: Condvar::new(),
+            position: Arc::new(super::position_cell::PositionCell::new(&initial.joints)),
         });
 
         let recorder = std::thread::Builder::new()

@@ -83,6 +83,8 @@ pub struct SystemState {
     clock: MonotonicClock,
     /// The RAPID tasks' message queues (a system with several tasks).
     task_queues: TaskQueuesSlot,
+    /// The motion thread's position cell, once the program side has handed it over.
+    position: std::sync::OnceLock<Arc<crate::controller::position_cell::PositionCell>>,
 }
 
 /// Where [`TaskQueues`] is kept (a closure, shown by whether it is set).
@@ -136,6 +138,7 @@ impl SystemState {
             calendar,
             clock: MonotonicClock::new(),
             task_queues: TaskQueuesSlot(Mutex::new(None)),
+            position: std::sync::OnceLock::new(),
         }
     }
 
@@ -349,9 +352,25 @@ impl SystemState {
         self.lock().cycle
     }
 
-    /// The robot's last known position.
+    /// The robot's position: the motion thread's latest cycle (at most one cycle old) once
+    /// its position cell is attached, else the program side's last copy.
     pub fn robot(&self) -> RobotState {
-        self.lock().robot
+        match self.position.get() {
+            Some(cell) => {
+                let s = cell.load();
+                RobotState {
+                    time: s.time,
+                    joints: s.joints,
+                }
+            }
+            None => self.lock().robot,
+        }
+    }
+
+    /// Read the robot's position from the motion thread's cell from now on (the first cell
+    /// given stays).
+    pub fn attach_position(&self, cell: Arc<crate::controller::position_cell::PositionCell>) {
+        let _ = self.position.set(cell);
     }
 
     /// The program side tells where the robot is.

@@ -72,6 +72,11 @@ impl Interp {
             .collect()
     }
 
+    /// The current value of the data symbol at `index` (from [`Interp::data_symbols`]).
+    pub fn data_value(&self, index: usize) -> Option<&Value> {
+        self.globals.get(index)
+    }
+
     /// Write the data symbol at `index` (from [`Interp::data_symbols`]) from RAPID literal
     /// text (`42`, `[1,2,3]`, `"text"`, `TRUE`). The value must have the data's shape; a
     /// constant is refused.

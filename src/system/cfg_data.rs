@@ -264,6 +264,42 @@ impl CfgData {
         }
     }
 
+    /// Add the instances of `type_name` to `domain` when the loaded configuration has none
+    /// of that type (the domain is added when missing, with `header` as its file header).
+    /// Returns whether it added them.
+    pub fn add_if_missing(
+        &mut self,
+        domain: &str,
+        header: &str,
+        type_name: &str,
+        instances: Vec<Vec<(String, CfgValue)>>,
+    ) -> bool {
+        if self.instances(domain, type_name).next().is_some() {
+            return false;
+        }
+        let ty = TypeData {
+            name: type_name.to_string(),
+            instances: instances
+                .into_iter()
+                .map(|attrs| Instance { attrs })
+                .collect(),
+        };
+        match self
+            .domains
+            .iter_mut()
+            .find(|d| d.name.eq_ignore_ascii_case(domain))
+        {
+            Some(d) => d.types.push(ty),
+            None => self.domains.push(Domain {
+                name: domain.to_string(),
+                header: header.to_string(),
+                types: vec![ty],
+                source: None,
+            }),
+        }
+        true
+    }
+
     /// Let `SaveCfgData` write into `dir` (and the directories below it).
     pub fn allow_saving_in(&mut self, dir: impl Into<PathBuf>) {
         self.save_dir = Some(dir.into());

@@ -174,7 +174,7 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         }
     };
     let system = run::system_services(a, &config, &sources);
-    let info = serve_info(&system, system.cfg.clone(), roots, &signals);
+    let info = serve_info(&system, roots, &signals);
     let calendar = system.calendar;
     let uses_sockets = tasks
         .iter()

@@ -12,6 +12,7 @@ use std::time::{Duration, Instant};
 use super::SystemState;
 use crate::ast::Storage;
 use crate::controller::ControllerHost;
+use crate::controller::robtarget_query;
 use crate::controller::service::{
     Coordinate, CycleMode, Event, MechUnitInfo, ModuleInfo, OpMode, Request, RobotState,
     ServiceError, SymbolClass, SymbolInfo, SymbolPath, TaskExecState,
@@ -19,7 +20,6 @@ use crate::controller::service::{
 use crate::events::EventKind;
 use crate::interp::data_access::{DataSymbol, DataWriteError};
 use crate::interp::{HookAction, Interp, Outcome, RuntimeError};
-use crate::robot::{Pose, ToolData, WobjData};
 
 /// How often changed persistents and the robot's position are looked for.
 const DATA_POLL: Duration = Duration::from_millis(20);
@@ -397,55 +397,30 @@ impl ProgramSide {
     }
 }
 
-/// The robot's TCP as a robtarget (RAPID text), for `tool0`/`wobj0`.
+/// The robot's TCP as a robtarget (RAPID text) of a tool and work object of the task's data
+/// in a coordinate system, at the motion thread's latest cycle
+/// (`controller/robtarget_query.rs`).
 fn robtarget(
     it: &mut Interp,
     tool: Option<&str>,
     wobj: Option<&str>,
     coordinate: Coordinate,
 ) -> Result<String, ServiceError> {
-    for (what, name, default) in [("tool", tool, "tool0"), ("wobj", wobj, "wobj0")] {
-        if let Some(n) = name
-            && !n.eq_ignore_ascii_case(default)
-        {
-            return Err(ServiceError::NotFound(format!(
-                "{what} {n}: rapidvc serves robtargets for tool0 and wobj0 only"
-            )));
-        }
-    }
-    if coordinate == Coordinate::Tool {
-        return Err(ServiceError::BadValue(
-            "the Tool coordinate system is not supported by rapidvc; use Base, World or Wobj"
-                .into(),
-        ));
-    }
+    let tool = robtarget_query::tool(it, tool)?;
+    let wobj = robtarget_query::wobj(it, wobj)?;
+    let pdisp = it.host_mut().motion_modes().pdisp;
     let h = host(it).ok_or_else(|| ServiceError::NotAllowed("no robot".into()))?;
-    let joints = h
-        .controller()
-        .map(|c| c.state().setpoint.joints)
-        .ok_or(ServiceError::Gone)?;
-    let t = crate::interp::Host::robot_target_of(
-        h,
-        &joints,
-        &ToolData::default(),
-        &WobjData::default(),
-        &Pose::identity(),
-    )
-    .map_err(|e| ServiceError::NotAllowed(e.message))?;
-    let n = |v: f64| crate::functions::format::format_num(v as f32);
-    let list = |v: &[f64]| v.iter().map(|x| n(*x)).collect::<Vec<_>>().join(",");
-    Ok(format!(
-        "[[{}],[{}],[{}],[{}]]",
-        list(&t.trans),
-        list(&t.rot),
-        t.robconf
-            .to_array()
-            .iter()
-            .map(|c| c.to_string())
-            .collect::<Vec<_>>()
-            .join(","),
-        list(&t.extax)
-    ))
+    let ctl = h.controller().ok_or(ServiceError::Gone)?;
+    let joints = match ctl.position_cell() {
+        Some(cell) => cell.load().joints,
+        None => ctl.state().setpoint.joints,
+    };
+    let h: &ControllerHost = h;
+    let t =
+        robtarget_query::in_coordinate(&joints, &tool, &wobj, &pdisp, coordinate, |j, t, w, p| {
+            crate::interp::Host::robot_target_of(h, j, t, w, p).map_err(|e| e.message)
+        })?;
+    Ok(robtarget_query::text(&t))
 }
 
 /// How a program run ended, for the event log.
@@ -478,6 +453,12 @@ pub fn run_program(it: &mut Interp, entry: &str, side: ProgramSide) {
     let task = lock(&side).task.clone();
     let background = lock(&side).system.is_some_and(|s| s.background);
     lock(&side).prime(it);
+    if let Some(cell) = host(it)
+        .and_then(ControllerHost::controller)
+        .and_then(|c| c.position_cell())
+    {
+        state.attach_position(cell);
+    }
     loop {
         // Idle: the program pointer is at main.
         while !state.shutting_down() && !lock(&side).runs() {

@@ -130,7 +130,8 @@ fn signal_info(info: &ServeInfo, id: SignalId) -> Option<SignalInfo> {
 fn cfg_text(v: &crate::config::cfg::CfgValue) -> String {
     use crate::config::cfg::CfgValue;
     match v {
-        CfgValue::Flag => "TRUE".into(),
+        // RWS writes a switch attribute as `true` (abb_librws compares with that).
+        CfgValue::Flag => "true".into(),
         CfgValue::Str(s) | CfgValue::Word(s) => s.clone(),
         CfgValue::Num(n) => {
             if n.fract() == 0.0 && n.abs() < 1e15 {
@@ -250,7 +251,6 @@ fn answer(
                         attributes: i
                             .attrs
                             .iter()
-                            .filter(|(k, _)| !k.eq_ignore_ascii_case("Name"))
                             .map(|(k, v)| (k.clone(), cfg_text(v)))
                             .collect(),
                     })

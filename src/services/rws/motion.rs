@@ -133,14 +133,18 @@ pub(super) async fn mechunits(shared: &Arc<Shared>, rq: &Rq, rest: &[&str]) -> O
             ))
         }
         ["robtarget"] => {
-            let tool = rq
-                .query("tool")
-                .filter(|t| !t.is_empty())
-                .map(str::to_string);
-            let wobj = rq
-                .query("wobj")
-                .filter(|t| !t.is_empty())
-                .map(str::to_string);
+            // Without `tool`/`wobj` (abb_librws' "active" request), the active ones: what
+            // `?resource=dynamic` names.
+            let named = |key: &str, active: &str| {
+                Some(
+                    rq.query(key)
+                        .filter(|t| !t.is_empty())
+                        .unwrap_or(active)
+                        .to_string(),
+                )
+            };
+            let tool = named("tool", &unit.tool);
+            let wobj = named("wobj", &unit.wobj);
             let coordinate = coordinate(rq.query("coordinate").unwrap_or("Base"))?;
             let text = shared
                 .ask(|reply| Request::RobTarget {

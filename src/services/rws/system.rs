@@ -19,11 +19,42 @@ pub(super) fn version_name(version: &str) -> String {
     }
 }
 
+/// The option name of ABB's StateMachine add-in (version 1.1), which abb_egm_rws_managers
+/// looks for before it reads the add-in's RAPID data.
+const STATE_MACHINE: &str = "StateMachine Core";
+
+/// The module of the StateMachine add-in's RAPID that holds its state (`current_state`).
+const STATE_MACHINE_MODULE: &str = "TRobMain";
+
+/// Whether every motion task has the StateMachine add-in's main module loaded: rapidvc does
+/// not ship the add-in, but a system whose motion task has RAPID of that shape (loaded by the
+/// user) is listed with the add-in's option, so the ROS drivers use it.
+async fn state_machine_loaded(shared: &Arc<Shared>) -> Result<bool, super::repr::RwsError> {
+    let tasks = shared.ask(Request::Tasks).await?;
+    let mut any = false;
+    for t in tasks.into_iter().filter(|t| t.motion_task) {
+        let task = t.name;
+        let modules = shared.ask(|reply| Request::Modules { task, reply }).await?;
+        if !modules
+            .iter()
+            .any(|m| m.name.eq_ignore_ascii_case(STATE_MACHINE_MODULE))
+        {
+            return Ok(false);
+        }
+        any = true;
+    }
+    Ok(any)
+}
+
 pub(super) async fn system(shared: &Arc<Shared>, rq: &Rq) -> Outcome {
     if rq.method != Method::GET || rq.action().is_some() {
         return Err(rq.unknown_action());
     }
     let info = shared.ask(Request::System).await?;
+    let mut options = info.options.clone();
+    if state_machine_loaded(shared).await? {
+        options.push(STATE_MACHINE.to_string());
+    }
     let mut st = State::new("system", "rw/", "system").item(
         Item::new("sys-system-li", info.name.clone())
             .field("name", &info.name)
@@ -31,7 +62,7 @@ pub(super) async fn system(shared: &Arc<Shared>, rq: &Rq) -> Outcome {
             .field("sysid", &info.serial)
             .field("rwversionname", version_name(&info.robotware_version)),
     );
-    for o in &info.options {
+    for o in &options {
         st = st.item(Item::new("sys-option-li", o.clone()).field("option", o));
     }
     Ok(Answer::Ok(st))
@@ -52,19 +83,24 @@ pub(super) async fn ctrl(shared: &Arc<Shared>, rq: &Rq) -> Outcome {
     ))
 }
 
-/// One instance: its name first (as the attribute `name`, unless the instance spells its
-/// name attribute itself, as SYS.cfg's `Name`), then every attribute.
+/// How a domain spells the name attribute: `name` in MOC, `Name` elsewhere (as RobotWare's
+/// own files and abb_librws spell them), whatever the loaded file wrote.
+fn name_title(domain: &str) -> &'static str {
+    if domain.eq_ignore_ascii_case("moc") {
+        "name"
+    } else {
+        "Name"
+    }
+}
+
+/// One instance: its name first, then every other attribute in file order.
 fn instance_item(domain: &str, type_name: &str, i: &CfgInstance) -> Item {
     let mut attrs = Vec::with_capacity(i.attributes.len() + 1);
-    if !i
-        .attributes
-        .iter()
-        .any(|(k, _)| k.eq_ignore_ascii_case("name"))
-    {
-        attrs.push(Item::new("cfg-ia-t-li", "name").field("value", &i.name));
-    }
+    attrs.push(Item::new("cfg-ia-t-li", name_title(domain)).field("value", &i.name));
     for (k, v) in &i.attributes {
-        attrs.push(Item::new("cfg-ia-t-li", k.clone()).field("value", v));
+        if !k.eq_ignore_ascii_case("name") {
+            attrs.push(Item::new("cfg-ia-t-li", k.clone()).field("value", v));
+        }
     }
     Item::new("cfg-dt-instance-li", i.name.clone())
         .link("self", format!("{domain}/{type_name}/instances/{}", i.name))
@@ -101,19 +137,22 @@ mod tests {
     }
 
     #[test]
-    fn a_spelled_name_attribute_is_not_repeated() {
+    fn the_name_attribute_is_spelled_as_the_domain_does() {
         let i = CfgInstance {
             name: "g1".into(),
             attributes: vec![
-                ("Name".into(), "g1".into()),
+                ("name".into(), "g1".into()),
                 ("Robot".into(), "ROB_1".into()),
             ],
         };
-        let item = instance_item("sys", "MECHANICAL_UNIT_GROUP", &i);
-        let Some((_, super::super::repr::FieldValue::Items(a))) = item.fields.first() else {
-            panic!("attributes")
+        let titles = |domain| {
+            let item = instance_item(domain, "T", &i);
+            let Some((_, super::super::repr::FieldValue::Items(a))) = item.fields.first() else {
+                panic!("attributes")
+            };
+            a.iter().map(|x| x.title.clone()).collect::<Vec<_>>()
         };
-        assert_eq!(a.len(), 2);
-        assert_eq!(a.first().map(|x| x.title.as_str()), Some("Name"));
+        assert_eq!(titles("sys"), ["Name", "Robot"]);
+        assert_eq!(titles("MOC"), ["name", "Robot"]);
     }
 }
