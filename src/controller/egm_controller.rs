@@ -28,6 +28,9 @@
 //!   this also ends the EGMRun… the TRAP interrupted.
 //! * A run started with `\NoWaitCond` that ends with an error reports it (always fatal) at
 //!   EGMWaitCond, at the next EGM instruction, or at the end of the program.
+//! * A program stop with the program pointer kept (`rapidvc serve`): the run pauses and
+//!   goes on at the start ([`EgmController::pause_run`], `egm::servo`'s speed scale); the
+//!   controller's speed ratio scales the EGM speed ([`EgmController::set_speed_ratio`]).
 //! * Program end or stop: a run still active brakes to rest (`egm::servo`: from its speed,
 //!   within MaxSpeedDeviation and the axis accelerations, short of the reference;
 //!   [`EgmController::program_stopped`]); streams end.
@@ -216,6 +219,8 @@ pub struct EgmController {
     capped_noted: bool,
     /// EGMMoveL/EGMMoveC (`controller::corrected_moves`).
     pathcorr: PathCorr,
+    /// The controller's speed ratio, percent (`rapidvc serve`; 100 otherwise).
+    ratio_pct: u8,
 }
 
 impl std::fmt::Debug for EgmController {
@@ -275,6 +280,7 @@ impl EgmController {
             logger,
             capped_noted: false,
             pathcorr,
+            ratio_pct: 100,
         };
         Ok((controller, hook))
     }
@@ -598,6 +604,37 @@ impl EgmController {
         result
     }
 
+    /// The program stopped with the program pointer kept (`rapidvc serve`): a run going on
+    /// pauses (its EGM speed ramps to zero over the profile's Default Ramp Time, the
+    /// session goes on telling the sensor RAPID_STOPPED) until [`EgmController::resume_run`].
+    /// Returns true when a run was paused.
+    pub fn pause_run(&mut self) -> bool {
+        self.poll_reports();
+        match self.run.as_ref().filter(|r| r.result.is_none()) {
+            Some(run) => {
+                run.control.set_paused(true);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The program started again: a paused run goes on.
+    pub fn resume_run(&mut self) {
+        if let Some(run) = &self.run {
+            run.control.set_paused(false);
+        }
+    }
+
+    /// The controller's speed ratio (1–100 %): scales the EGM speed of the run going on and
+    /// of every later one (`egm::servo`, "Speed scale").
+    pub fn set_speed_ratio(&mut self, percent: u8) {
+        self.ratio_pct = percent.clamp(1, 100);
+        if let Some(run) = &self.run {
+            run.control.set_ratio(self.ratio_pct);
+        }
+    }
+
     /// End: wait for the log writer (call after [`ControllerHandle::finish`], which drops the
     /// cycle hook and with it the writer's input).
     pub fn finish(self) -> Result<EgmSummary, String> {
@@ -780,6 +817,7 @@ impl EgmController {
             }
         };
         let control = Arc::new(RunControl::default());
+        control.set_ratio(self.ratio_pct);
         let guidance = EgmGuidance {
             id,
             name: Arc::from(plan.name.as_str()),
@@ -789,6 +827,7 @@ impl EgmController {
             control: Arc::clone(&control),
             speed_limited: false,
             last: None,
+            ratio: 1.0,
         };
         let slot = &self.shared.run;
         *slot.lock().unwrap_or_else(PoisonError::into_inner) = Some(guidance);

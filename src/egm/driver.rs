@@ -519,6 +519,40 @@ impl EgmDriver {
         }
     }
 
+    /// The program stopped with the run going on (a controller that stays up): the EGM speed
+    /// ramps to zero over the profile's Default Ramp Time while the session goes on, telling
+    /// the sensor RAPID_STOPPED and MCI_STOPPED; [`EgmDriver::resume`] continues the run.
+    pub fn pause(&mut self) {
+        if self.outcome.is_none() && self.error.is_none() {
+            self.exec = RapidExecState::Stopped;
+            self.mci = MciState::Stopped;
+            self.servo.pause(self.halt_ramp);
+        }
+    }
+
+    /// The program started again: the paused run goes on (RAPID_RUNNING, MCI_RUNNING), its
+    /// EGM speed ramping back in.
+    pub fn resume(&mut self) {
+        if self.outcome.is_none() && self.servo.is_paused() {
+            self.exec = RapidExecState::Running;
+            if self.error.is_none() {
+                self.mci = MciState::Running;
+            }
+            self.servo.resume(self.halt_ramp);
+        }
+    }
+
+    /// True while paused by [`EgmDriver::pause`].
+    pub fn is_paused(&self) -> bool {
+        self.outcome.is_none() && self.servo.is_paused()
+    }
+
+    /// The controller's speed ratio (0…1): scales the EGM speed (`egm::servo`, "Speed
+    /// scale"), reached over the profile's Default Ramp Time.
+    pub fn set_speed_ratio(&mut self, ratio: f64) {
+        self.servo.set_ratio(ratio, self.halt_ramp);
+    }
+
     /// True once the session's comm time-out expired (event 41822).
     fn comm_timed_out(&self) -> bool {
         match &self.link {

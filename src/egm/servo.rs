@@ -40,6 +40,16 @@
 //! MaxSpeedDeviation or the accelerations need it); [`EgmServo::halt`] (program stop,
 //! errors, comm time-out) brakes over the profile's Default Ramp Time (shorter when the
 //! reference is closer) and stays where that leaves the robot.
+//!
+//! **Speed scale** (`EgmServo::pause`, `EgmServo::resume`, `EgmServo::set_ratio`). A
+//! running servo multiplies the EGM speed of step 5 by a scale in 0…1: the controller's
+//! speed ratio while the program runs, 0 while it is stopped (the program stop that lets the
+//! EGM run resume on start). The scale moves toward its target linearly over the profile's
+//! Default Ramp Time (a full change 0 ↔ 1), and more slowly when an axis's acceleration
+//! needs it (the change may add at most half of each axis's acceleration at the speed the
+//! law asks for), so a stop, a start, or any series of them never jerks the robot. While the
+//! run is paused the convergence timer (`\CondTime`) stands at zero: the condition must hold
+//! for `\CondTime` of guided motion after the start.
 
 use std::time::Duration;
 
@@ -271,7 +281,16 @@ pub struct EgmServo {
     was_clamped: bool,
     was_at_limit: bool,
     at_limit: u8,
+    /// The speed scale (module docs): this step's value, the speed ratio, paused, and the
+    /// time of a full change.
+    scale: f64,
+    ratio: f64,
+    paused: bool,
+    scale_ramp: Duration,
 }
+
+/// Share of each axis's acceleration a change of the speed scale may add.
+const SCALE_ACCEL_SHARE: f64 = 0.5;
 
 impl EgmServo {
     /// Starts a run at `start` (the fine point the EGM movement begins in).
@@ -316,7 +335,76 @@ impl EgmServo {
             was_clamped: false,
             was_at_limit: false,
             at_limit: 0,
+            scale: 1.0,
+            ratio: 1.0,
+            paused: false,
+            scale_ramp: DEFAULT_RAMP_TIME,
         })
+    }
+
+    /// The program stopped with the run going on: the EGM speed ramps to zero over `ramp`
+    /// (the profile's Default Ramp Time; module docs) and the run waits for
+    /// [`EgmServo::resume`]. A run already ending (EGMStop, convergence) goes on braking to
+    /// rest; a RAMP_DOWN return stops where it is ([`EgmServo::halt`]).
+    pub fn pause(&mut self, ramp: Duration) {
+        match self.phase {
+            ServoPhase::Running => {
+                self.paused = true;
+                self.scale_ramp = ramp;
+            }
+            ServoPhase::RampingDown if self.brake.is_none() => self.halt(ramp),
+            _ => {}
+        }
+    }
+
+    /// The program started again: the EGM speed ramps back in over `ramp`.
+    pub fn resume(&mut self, ramp: Duration) {
+        if self.paused {
+            self.paused = false;
+            self.scale_ramp = ramp;
+            self.converged_for = Duration::ZERO;
+        }
+    }
+
+    /// True while paused by [`EgmServo::pause`].
+    pub fn is_paused(&self) -> bool {
+        self.paused
+    }
+
+    /// The controller's speed ratio (0…1, from its percent): scales the EGM speed, reached
+    /// over `ramp` like a pause.
+    pub fn set_ratio(&mut self, ratio: f64, ramp: Duration) {
+        if ratio.is_finite() {
+            self.ratio = ratio.clamp(0.0, 1.0);
+            self.scale_ramp = ramp;
+        }
+    }
+
+    /// The speed scale of this step (module docs).
+    pub fn speed_scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// Moves the scale one bounded step toward its target, given the speed the law asks
+    /// for (`law`, degrees/s, before scaling).
+    fn step_scale(&mut self, law: &Joints) {
+        let target = if self.paused { 0.0 } else { self.ratio };
+        let ramp = self.scale_ramp.as_secs_f64();
+        let mut step = if ramp > 0.0 { self.ts / ramp } else { 1.0 };
+        if let Some(accel) = self.params.axis_accel {
+            for (v, a) in law.iter().zip(&accel) {
+                let v = v.abs();
+                if v > 0.0 && a.is_finite() && *a > 0.0 {
+                    step = step.min(SCALE_ACCEL_SHARE * a * self.ts / v);
+                }
+            }
+        }
+        let c = self.scale;
+        self.scale = if c < target {
+            (c + step).min(target)
+        } else {
+            (c - step).max(target)
+        };
     }
 
     /// The parameters.
@@ -465,6 +553,12 @@ impl EgmServo {
                         *v *= limit_factor;
                     }
                 }
+                self.step_scale(&velocity);
+                if self.scale < 1.0 {
+                    for v in &mut velocity {
+                        *v *= self.scale;
+                    }
+                }
                 clamped_axes = self.integrate(&velocity);
             }
             ServoPhase::Holding | ServoPhase::Halting => {
@@ -517,13 +611,14 @@ impl EgmServo {
         }
         let feedback = self.push_delay();
         let convergence_met = self.convergence(input, &feedback);
-        if convergence_met {
+        if convergence_met && !self.paused {
             self.converged_for = self.converged_for.saturating_add(self.params.period);
         } else {
             self.converged_for = Duration::ZERO;
         }
         if self.phase == ServoPhase::Running
             && convergence_met
+            && !self.paused
             && self.converged_for >= self.params.cond_time
         {
             let (mode, ramp) = (self.params.stop_mode, self.params.ramp_out_time);

@@ -233,6 +233,6 @@ pub fn path_op_plan(
             }
         }
         PathOp::Clear => planner.set_start(here),
-        PathOp::Hold { .. } | PathOp::Release | PathOp::Speed(_) => {}
+        PathOp::Hold { .. } | PathOp::Release | PathOp::Speed(_) | PathOp::Ratio(_) => {}
     }
 }

@@ -2,11 +2,15 @@
 ! session against the sensor on device "sensor", of the kind the analog output egm_mode
 ! selects, as the RWS client set it before starting: 1 joint (target [10,-5,20,0,40,30]),
 ! 2 pose (the flange to [1068.61,-30,1457.5], orientation [0.5,0,0.866025,0] in world),
-! 3 path correction (a straight EGMMoveL of 400 mm along +X corrected by the sensor).
+! 3 path correction (a straight EGMMoveL of 400 mm along +X corrected by the sensor),
+! 4 a slow joint run (MaxSpeedDeviation 10 deg/s, timed in egm_time) for stopping and
+! starting it and for the speed ratio (tests/rws_egm_stop.rs).
 ! The PERS data tell the client what ran and how it ended.
 MODULE EgmModes
     PERS num last_mode := 0;
     PERS num last_state := 0;
+    PERS num egm_time := 0;
+    VAR clock clk;
     VAR egmident egm1;
     CONST jointtarget home := [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
     CONST pose world := [[0,0,0],[1,0,0,0]];
@@ -47,6 +51,17 @@ MODULE EgmModes
             MoveJ pAbove, v1000, z10, tTorch;
             MoveL pStart, v200, fine, tTorch;
             EGMMoveL egm1, pEnd, v100, fine, tTorch;
+        CASE 4:
+            MoveAbsJ home, v1000, fine, tool0;
+            EGMSetupUC ROB_1, egm1, "default", "sensor" \Joint \CommTimeout:=5;
+            EGMActJoint egm1 \J1:=win \J2:=win \J3:=win \J4:=win \J5:=win \J6:=win
+                \MaxSpeedDeviation:=10;
+            ClkReset clk;
+            ClkStart clk;
+            EGMRunJoint egm1, EGM_STOP_HOLD \J1 \J2 \J3 \J4 \J5 \J6 \CondTime:=0.5
+                \RampInTime:=0.1;
+            ClkStop clk;
+            egm_time := ClkRead(clk);
         DEFAULT:
             TPWrite "egm_mode selects no session: " \Num:=mode;
         ENDTEST

@@ -75,6 +75,7 @@ impl<H: EgmParts + Host> EgmPathHost for H {
         let instruction = instruction(&cmd);
         renumber(self, &mut cmd).ok_or_else(no_egm)?;
         let last = self.last_move();
+        let kept = cmd.clone();
         let result = match self.egm_parts() {
             Some((egm, handle)) => {
                 let (pc, registry) = egm.path_corr();
@@ -87,7 +88,11 @@ impl<H: EgmParts + Host> EgmPathHost for H {
         };
         report_events(self);
         match result {
-            Ok(ticket) => Ok(ticket.cmd_id),
+            Ok(ticket) => {
+                // A program stop brakes it; the start continues it like any move.
+                self.keep_move(ticket.cmd_id, &kept);
+                Ok(ticket.cmd_id)
+            }
             Err(e) => Err(program_error(self, e)),
         }
     }

@@ -125,7 +125,11 @@ impl EgmHook {
                 axes,
                 reference,
                 feedback,
-                EgmTraceState::Running,
+                if g.driver.is_paused() {
+                    EgmTraceState::Connected
+                } else {
+                    EgmTraceState::Running
+                },
                 std::mem::take(&mut g.speed_limited),
             );
         }

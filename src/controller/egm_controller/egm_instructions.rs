@@ -12,6 +12,7 @@ use crate::egm::servo::StopMode;
 use crate::interp::host::{EgmHost, EgmRun, HostError};
 use crate::ir::errnum;
 use crate::motion::InstrRef;
+use crate::robot::command::MotionCommand;
 use crate::signals::SignalId;
 use crate::source::Span;
 
@@ -28,6 +29,9 @@ pub trait EgmParts {
     fn egm_instr(&mut self, name: &'static str, span: Span) -> Option<InstrRef>;
     /// One EGM event line for the event log (stderr).
     fn egm_event(&mut self, text: String);
+    /// A corrected move (EGMMoveL/EGMMoveC, id `id`) was queued: a host that continues
+    /// stopped moves keeps it too.
+    fn keep_move(&mut self, _id: u64, _cmd: &MotionCommand) {}
 }
 
 /// An [`EgmFailure`] as the interpreter's error: catchable with its RAPID error number

@@ -7,7 +7,7 @@
 //! there; the program side fills the slot before it hands the run to the executor and the
 //! hook empties it when the run retired.
 
-use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, TryLockError};
 use std::time::Duration;
 
@@ -32,6 +32,11 @@ pub(crate) struct RunControl {
     request: AtomicU8,
     /// `\RampOutTime` of an EGMStop in ns; `u64::MAX`: none given.
     ramp_out_ns: AtomicU64,
+    /// The program is stopped with the run going on (a level, not a request: the last word
+    /// of any series of stops and starts counts).
+    paused: AtomicBool,
+    /// The controller's speed ratio, percent (0: not set, 100 %).
+    ratio_pct: AtomicU8,
 }
 
 /// A request taken by the cycle.
@@ -58,6 +63,30 @@ impl RunControl {
     /// Program stop: the run brakes to rest.
     pub(crate) fn halt(&self) {
         self.request.store(HALT, Ordering::Release);
+    }
+
+    /// Pause (`true`, the program stopped) or resume the run (`egm::servo`, "Speed scale").
+    pub(crate) fn set_paused(&self, paused: bool) {
+        self.paused.store(paused, Ordering::Release);
+    }
+
+    /// True while the program side wants the run paused.
+    pub(crate) fn paused(&self) -> bool {
+        self.paused.load(Ordering::Acquire)
+    }
+
+    /// The controller's speed ratio in percent (1–100).
+    pub(crate) fn set_ratio(&self, percent: u8) {
+        self.ratio_pct
+            .store(percent.clamp(1, 100), Ordering::Release);
+    }
+
+    /// The speed ratio as a share (0.01–1).
+    pub(crate) fn ratio(&self) -> f64 {
+        match self.ratio_pct.load(Ordering::Acquire) {
+            0 => 1.0,
+            p => f64::from(p.min(100)) / 100.0,
+        }
     }
 
     /// The pending request, if any (taken once).
@@ -95,6 +124,8 @@ pub(crate) struct EgmGuidance {
     pub speed_limited: bool,
     /// The last tick's result.
     pub last: Option<EgmTick>,
+    /// The speed ratio the driver was last given.
+    pub ratio: f64,
 }
 
 /// Where the running EGM run lives (see the module docs).
@@ -128,6 +159,16 @@ impl EgmGuidance {
             Some(Request::Stop(mode, ramp)) => self.driver.stop(mode, ramp),
             Some(Request::Halt) => self.driver.halt(),
             None => {}
+        }
+        let ratio = self.control.ratio();
+        if ratio != self.ratio {
+            self.ratio = ratio;
+            self.driver.set_speed_ratio(ratio);
+        }
+        match (self.control.paused(), self.driver.is_paused()) {
+            (true, false) => self.driver.pause(),
+            (false, true) => self.driver.resume(),
+            _ => {}
         }
         if self.driver.is_finished() {
             return GuidanceStep::Finished;

@@ -461,3 +461,53 @@ ENDMODULE
         );
     }
 }
+
+/// Ticks virtual time by `cycles` motion cycles.
+fn tick(h: &mut ControllerHandle, cycles: u32) {
+    let t = h.now().saturating_add(Duration::from_millis(4) * cycles);
+    h.wait_until(Condition::TimeReached(t)).unwrap();
+}
+
+#[test]
+fn a_paused_run_stands_and_resumes_to_convergence_and_the_ratio_slows_it() {
+    let target = [10.0, -5.0, 20.0, 0.0, 40.0, 30.0];
+    let (mut h, mut egm) = controller(&["sensor=builtin:joint:10,-5,20,0,40,30"]);
+    egm.get_id(&mut h, "e").unwrap();
+    egm.setup_uc(&mut h, "e", &uc(EgmMode::Joint, "sensor"))
+        .unwrap();
+    let mut act = ActJoint::default();
+    act.common.max_speed_deviation = Some(10.0);
+    egm.act_joint(&mut h, "e", &act).unwrap();
+    let args = RunArgs {
+        cond_time: Some(0.2),
+        ..RunArgs::new(StopMode::Hold)
+    };
+    let axes = [true, true, true, true, true, true, false];
+    egm.run_joint(&mut h, "e", &args, axes, LastMove::StopPoint, None)
+        .unwrap();
+    // Half speed: J6 (the farthest, 30°, at MaxSpeedDeviation) moves at 5 °/s.
+    egm.set_speed_ratio(50);
+    tick(&mut h, 250);
+    let a = h.state().setpoint.joints[5];
+    tick(&mut h, 25);
+    let speed = (h.state().setpoint.joints[5] - a) / 0.1;
+    assert!((speed - 5.0).abs() < 0.2, "{speed} °/s at 50 %");
+    egm.set_speed_ratio(100);
+    tick(&mut h, 100);
+    // Paused: the speed ramps out over the default profile's 0.5 s, then the robot stands
+    // and the run does not end.
+    assert!(egm.pause_run());
+    tick(&mut h, 150);
+    let held = h.state().setpoint.joints;
+    tick(&mut h, 500);
+    assert_eq!(h.state().setpoint.joints, held, "stands while paused");
+    assert!(held[5] < 29.0, "short of the target: {held:?}");
+    assert!(!egm.run_done("e", false).unwrap());
+    egm.resume_run();
+    wait_run(&mut h, &mut egm, "e").unwrap();
+    let q = h.state().setpoint.joints;
+    for (a, b) in q.iter().zip(target) {
+        assert!((a - b).abs() < 0.5, "{q:?}");
+    }
+    assert!(!egm.pause_run(), "nothing to pause after the run");
+}

@@ -5,6 +5,7 @@ use crate::controller::egm_controller::{EgmController, EgmParts, LastMove};
 use crate::interp::Host;
 use crate::interp::host::Output;
 use crate::motion::InstrRef;
+use crate::robot::command::MotionCommand;
 use crate::source::Span;
 
 use super::ControllerHost;
@@ -32,5 +33,11 @@ impl EgmParts for ControllerHost {
 
     fn egm_event(&mut self, text: String) {
         self.output(Output::Event(text));
+    }
+
+    fn keep_move(&mut self, id: u64, cmd: &MotionCommand) {
+        if let Some(p) = self.panel.as_mut() {
+            p.unfinished.push_back((id, cmd.clone()));
+        }
     }
 }

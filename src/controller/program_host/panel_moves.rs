@@ -1,17 +1,20 @@
 //! A controller that stays up (`rapidvc serve`): the operator panel's limits applied to every
 //! move, and stopping and continuing a program's motion.
 //!
-//! * **Speed ratio** (1–100 %, `rw/panel/speedratio`): scales the programmed speeds of every
-//!   move planned after it was set, on top of `VelSet`, as the FlexPendant's override does.
-//!   A move already planned keeps its speed (rapidvc plans each move completely when it is
-//!   submitted).
+//! * **Speed ratio** (1–100 %, `rw/panel/speedratio`): scales the robot's speed at once, as
+//!   the FlexPendant's override does: the executor plays the planned path at the ratio
+//!   (`motion::PathOp::Ratio`; moves already planned slow down or speed up within the axis
+//!   accelerations) and an EGM run scales its EGM speed by it
+//!   ([`crate::controller::egm_controller::EgmController::set_speed_ratio`]).
 //! * **Manual reduced speed** (MANR): the TCP speed of moves planned in MANR is capped at
 //!   250 mm/s.
 //! * **Stop and continue**: [`ControllerHost::hold_motion`] brakes the robot (all axes
 //!   together, within their accelerations) and keeps the moves that had not ended;
 //!   [`ControllerHost::resume_motion`] plans them again from where the robot stands, so an
 //!   interrupted move continues to its target when the program is started again (its
-//!   position events, `TriggL` and the like, are not fired again).
+//!   position events, `TriggL` and the like, are not fired again). An EGM run going on
+//!   pauses instead (its EGM speed ramps to zero, the sensor session goes on) and continues
+//!   at the start.
 
 use std::collections::VecDeque;
 use std::sync::Arc;
@@ -53,8 +56,9 @@ pub(super) struct PanelMoves {
     held: bool,
 }
 
-/// Run `submit` with the panel's speed ratio and MANR cap (when `limits` are given) applied
-/// to the modal settings for this one move.
+/// Run `submit` with the panel's MANR cap (when `limits` are given and the mode is MANR)
+/// applied to the modal settings for this one move. (The speed ratio is not planned in: the
+/// executor plays every move at it, [`ControllerHost::set_speed_ratio`].)
 pub(super) fn with_limits<T>(
     ctl: &mut ControllerHandle,
     limits: Option<&PanelLimits>,
@@ -63,13 +67,12 @@ pub(super) fn with_limits<T>(
     let Some(limits) = limits else {
         return submit(ctl);
     };
+    if !limits.manual_reduced.load(Ordering::Relaxed) {
+        return submit(ctl);
+    }
     let saved = ctl.settings();
     let mut s = saved;
-    let ratio = f64::from(limits.speed_ratio.load(Ordering::Relaxed).clamp(1, 100));
-    s.velset.override_pct = crate::motion::limits::override_factor(&saved) * ratio;
-    if limits.manual_reduced.load(Ordering::Relaxed) {
-        s.velset.max_tcp = s.velset.max_tcp.min(MANUAL_REDUCED_TCP_SPEED);
-    }
+    s.velset.max_tcp = s.velset.max_tcp.min(MANUAL_REDUCED_TCP_SPEED);
     ctl.set_settings(s);
     let result = submit(ctl);
     ctl.set_settings(saved);
@@ -99,9 +102,25 @@ impl ControllerHost {
         }
     }
 
-    /// The program stops: brake the robot and keep the moves that had not ended. Returns
-    /// how many moves are kept.
+    /// The controller's speed ratio changed (1–100 %): every move, planned or not, and EGM
+    /// go at it from now on (module docs).
+    pub fn set_speed_ratio(&mut self, percent: u8) {
+        let percent = percent.clamp(1, 100);
+        if let Some(ctl) = self.ctl.as_mut() {
+            // Refused only when the motion thread is gone (the controller shuts down).
+            let _ = ctl.path_op(crate::motion::PathOp::Ratio(f64::from(percent) / 100.0));
+        }
+        if let Some(egm) = self.egm.as_mut() {
+            egm.set_speed_ratio(percent);
+        }
+    }
+
+    /// The program stops: brake the robot and keep the moves that had not ended (an EGM run
+    /// pauses). Returns how many moves are kept.
     pub fn hold_motion(&mut self) -> usize {
+        if let Some(egm) = self.egm.as_mut() {
+            egm.pause_run();
+        }
         self.prune_unfinished();
         let moving = self
             .ctl
@@ -128,6 +147,9 @@ impl ControllerHost {
 
     /// The program starts again: plan the kept moves again from where the robot stands.
     pub fn resume_motion(&mut self) -> Result<(), HostError> {
+        if let Some(egm) = self.egm.as_mut() {
+            egm.resume_run();
+        }
         let Some(p) = self.panel.as_mut() else {
             return Ok(());
         };

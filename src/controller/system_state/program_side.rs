@@ -4,6 +4,7 @@
 //! persistents, and while the program is stopped blocks at the statement boundary with the
 //! robot held, so the program continues from its program pointer when it is started again.
 
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -31,6 +32,8 @@ pub struct ProgramSide {
     /// The last published value of every persistent (by global index).
     pers: Vec<(usize, String)>,
     last_poll: Instant,
+    /// The speed ratio the robot was last given (percent).
+    ratio: u8,
 }
 
 impl std::fmt::Debug for ProgramSide {
@@ -64,6 +67,7 @@ impl ProgramSide {
             task: task.to_string(),
             pers: Vec::new(),
             last_poll: Instant::now(),
+            ratio: 100,
         }
     }
 
@@ -241,6 +245,14 @@ impl ProgramSide {
     fn serve(&mut self, it: &mut Interp) {
         while let Ok(req) = self.requests.try_recv() {
             self.answer(it, req);
+        }
+        // The speed ratio scales the robot at once (moves already planned, EGM).
+        let ratio = self.state.limits.speed_ratio.load(Ordering::Relaxed);
+        if ratio != self.ratio
+            && let Some(h) = host(it)
+        {
+            self.ratio = ratio;
+            h.set_speed_ratio(ratio);
         }
         if self.last_poll.elapsed() >= DATA_POLL {
             self.last_poll = Instant::now();

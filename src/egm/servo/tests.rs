@@ -668,3 +668,147 @@ fn ramp_down_return_respects_max_speed_deviation_and_acceleration() {
         prev = v[0];
     }
 }
+
+/// Params of a run that stays saturated at MaxSpeedDeviation toward a far target.
+fn paced() -> ServoParams {
+    ServoParams {
+        max_speed_deviation: 20.0,
+        ramp_in_time: Duration::ZERO,
+        axis_accel: Some([700.0; 6]),
+        cond_time: Duration::from_millis(200),
+        ..ServoParams::default()
+    }
+}
+
+fn far_target() -> Joints {
+    let mut t = START;
+    t[0] = 30.0;
+    t
+}
+
+/// A program stop pauses the run: the EGM speed ramps to zero over the ramp time, the run
+/// stays (Running, CondTime not counted), and a start continues it to convergence.
+#[test]
+fn a_pause_ramps_the_speed_to_zero_and_a_resume_continues_the_run() {
+    let mut servo = EgmServo::new(paced(), START).unwrap();
+    let input = ServoInput::position(far_target());
+    for _ in 0..100 {
+        servo.step(&input);
+    }
+    let v0 = servo.step(&input).velocity[0];
+    assert!((v0 - 20.0).abs() < 1e-9, "saturated: {v0}");
+    servo.pause(Duration::from_millis(500));
+    assert!(servo.is_paused());
+    let mut prev = v0;
+    let mut ramp = 0;
+    loop {
+        let o = servo.step(&input);
+        assert_eq!(o.phase, ServoPhase::Running);
+        let v = o.velocity[0];
+        assert!(
+            v <= prev + 1e-12 && v >= 0.0,
+            "slows down steadily: {prev} → {v}"
+        );
+        prev = v;
+        ramp += 1;
+        if v == 0.0 {
+            break;
+        }
+        assert!(ramp < 1000, "never stops");
+    }
+    assert_eq!(ramp, 125, "0.5 s at 4 ms");
+    let held = servo.step(&input).commanded;
+    for _ in 0..500 {
+        let o = servo.step(&input);
+        assert_eq!(o.commanded, held, "stands while paused");
+        assert_eq!(o.converged_for, Duration::ZERO);
+        assert_eq!(o.phase, ServoPhase::Running);
+    }
+    servo.resume(Duration::from_millis(500));
+    assert!(!servo.is_paused());
+    let out = run_until_done(&mut servo, &input, 10_000);
+    let last = out.last().unwrap();
+    assert_eq!(last.finished, Some(EndCause::Converged));
+    assert!((last.commanded[0] - 30.0).abs() < 0.5, "{last:?}");
+    // The speed ramps back in: no jump.
+    for w in out.windows(2).take(200) {
+        assert!((w[1].velocity[0] - w[0].velocity[0]).abs() <= 0.5 * 700.0 * 0.004 + 1e-9);
+    }
+}
+
+/// A paused run converged on its reference does not end while paused: \CondTime counts
+/// from the start again.
+#[test]
+fn cond_time_is_not_counted_while_paused() {
+    let mut servo = EgmServo::new(fast(), START).unwrap();
+    let input = ServoInput::position(START);
+    servo.step(&input);
+    servo.pause(Duration::from_millis(100));
+    for _ in 0..1000 {
+        let o = servo.step(&input);
+        assert!(o.convergence_met && o.converged_for == Duration::ZERO);
+        assert_eq!(o.phase, ServoPhase::Running);
+    }
+    servo.resume(Duration::from_millis(100));
+    let out = run_until_done(&mut servo, &input, 5000);
+    let stop = out
+        .iter()
+        .position(|o| o.phase != ServoPhase::Running)
+        .unwrap();
+    assert_eq!(stop + 1, 250, "a full CondTime (1 s) after the start");
+}
+
+/// The speed ratio scales the EGM speed (MaxSpeedDeviation and the law together).
+#[test]
+fn the_speed_ratio_scales_the_egm_speed() {
+    let mut servo = EgmServo::new(paced(), START).unwrap();
+    let input = ServoInput::position(far_target());
+    servo.set_ratio(0.5, Duration::from_millis(100));
+    let mut v = 0.0;
+    for _ in 0..200 {
+        v = servo.step(&input).velocity[0];
+    }
+    assert!((v - 10.0).abs() < 1e-9, "{v}");
+    servo.set_ratio(f64::NAN, Duration::ZERO);
+    servo.set_ratio(1.0, Duration::from_millis(100));
+    for _ in 0..200 {
+        v = servo.step(&input).velocity[0];
+    }
+    assert!((v - 20.0).abs() < 1e-9, "{v}");
+}
+
+proptest! {
+    /// Any series of stops and starts (and ratio changes) keeps the EGM speed within
+    /// MaxSpeedDeviation and its changes within the axis acceleration.
+    #[test]
+    fn stop_and_start_spam_stays_within_the_limits(
+        toggles in proptest::collection::vec((1usize..40, 0u8..3, 1u8..=100), 1..40),
+        ramp_ms in 1u64..2000,
+    ) {
+        let mut servo = EgmServo::new(paced(), START).unwrap();
+        // Far enough that the run never converges within the test.
+        let mut far = START;
+        far[0] = 900.0;
+        let input = ServoInput::position(far);
+        let ramp = Duration::from_millis(ramp_ms);
+        let mut prev = 0.0;
+        for _ in 0..50 {
+            prev = servo.step(&input).velocity[0];
+        }
+        for (n, what, ratio) in toggles {
+            match what {
+                0 => servo.pause(ramp),
+                1 => servo.resume(ramp),
+                _ => servo.set_ratio(f64::from(ratio) / 100.0, ramp),
+            }
+            for _ in 0..n {
+                let o = servo.step(&input);
+                let v = o.velocity[0];
+                prop_assert!(v.abs() <= 20.0 + 1e-9, "{v}");
+                prop_assert!((v - prev).abs() <= 0.5 * 700.0 * 0.004 + 1e-9, "{prev} → {v}");
+                prop_assert_eq!(o.phase, ServoPhase::Running);
+                prev = v;
+            }
+        }
+    }
+}

@@ -11,6 +11,11 @@
 //! on the path and starting again both keep within the robot's limits. With the rate at 1 and
 //! nothing interpolated the executor plays samples exactly as without this module.
 //!
+//! **Speed ratio.** The controller's speed ratio ([`PathOp::Ratio`], the panel's override of
+//! a controller that stays up) is a second factor of the rate's target, on top of
+//! `SpeedRefresh`: a move already planned slows down or speeds up at once, within the same
+//! bounded ramp. It is kept while external guidance runs (EGM scales its own speed).
+//!
 //! **Stored path.** [`PathOp::Store`] puts the moves of the current path (active, queued, and
 //! the place on the path the robot holds at) aside and leaves an empty path for new moves;
 //! [`PathOp::Restore`] brings them back. The first cycles after a restore run from where the
@@ -53,6 +58,8 @@ pub enum PathOp {
     Restore,
     /// Drop the moves of the current path (`ClearPath`); a moving robot brakes to rest.
     Clear,
+    /// The controller's speed ratio as a share, 0.01…1 (module docs).
+    Ratio(f64),
 }
 
 /// Why a [`PathOp`] was refused.
@@ -92,6 +99,8 @@ pub(super) struct PathRate {
     pub speed: f64,
     /// Share of the axis accelerations a rate change may use.
     pub share: f64,
+    /// The controller's speed ratio (0.01…1).
+    pub ratio: f64,
 }
 
 impl Default for PathRate {
@@ -101,13 +110,18 @@ impl Default for PathRate {
             hold: false,
             speed: 1.0,
             share: RAMP_SHARE,
+            ratio: 1.0,
         }
     }
 }
 
 impl PathRate {
     fn target(&self) -> f64 {
-        if self.hold { 0.0 } else { self.speed }
+        if self.hold {
+            0.0
+        } else {
+            self.speed * self.ratio
+        }
     }
 
     /// True when the path plays exactly as planned.
@@ -164,6 +178,17 @@ fn lerp(a: &Sample, b: &Sample, t: f64) -> Sample {
 impl Executor {
     /// Apply a path operation (module docs). Outside the cycle (it may allocate).
     pub fn path_op(&mut self, op: PathOp) -> Result<(), PathOpError> {
+        if let PathOp::Ratio(r) = op {
+            // Not a share in range (NaN, ≤ 0): ignored, the ratio stays what it was.
+            if r.is_finite() && r > 0.0 {
+                let r = r.min(1.0);
+                self.rate.ratio = r;
+                if let Some(st) = self.stored.as_mut() {
+                    st.rate.ratio = r;
+                }
+            }
+            return Ok(());
+        }
         if self.external.is_some() {
             return Err(PathOpError::External);
         }
@@ -230,7 +255,10 @@ impl Executor {
                     held_at: self.setpoint.joints,
                     last_done: self.last_done,
                 });
-                self.rate = PathRate::default();
+                self.rate = PathRate {
+                    ratio: self.rate.ratio,
+                    ..PathRate::default()
+                };
             }
             PathOp::Restore => {
                 if self.active.is_some() || !self.queue.is_empty() || self.braking.is_some() {
@@ -245,7 +273,10 @@ impl Executor {
                 };
                 self.active = st.active;
                 self.spare_queue = std::mem::replace(&mut self.queue, st.queue);
-                self.rate = st.rate;
+                self.rate = PathRate {
+                    ratio: self.rate.ratio,
+                    ..st.rate
+                };
                 self.last_done = st.last_done;
                 // The robot is where the program moved it back to (near the held place): the
                 // interpolation runs from there to the next sample of the path (the regain),
@@ -262,6 +293,7 @@ impl Executor {
                 self.held_at = Some(st.held_at);
                 self.rate.current = 0.0;
             }
+            PathOp::Ratio(_) => {}
             PathOp::Clear => {
                 self.scaled = None;
                 self.held_at = None;
@@ -576,6 +608,35 @@ mod tests {
             r.core.path_op(PathOp::Restore),
             Err(PathOpError::NothingStored)
         );
+    }
+
+    #[test]
+    fn the_speed_ratio_slows_a_planned_move_at_once_and_speeds_it_up_again() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 400.0)).unwrap();
+        r.steps(150);
+        assert!((r.core.state().setpoint.speed - 200.0).abs() < 1e-6);
+        r.core.path_op(PathOp::Ratio(0.5)).unwrap();
+        let slow = r.steps(100);
+        for w in slow.windows(2) {
+            assert!(
+                w[1].speed <= w[0].speed + 1e-3,
+                "slows down steadily: {:?}",
+                slow.iter().map(|s| s.speed).collect::<Vec<_>>()
+            );
+        }
+        let s = slow.last().unwrap().speed;
+        assert!((s - 100.0).abs() < 1e-3, "{s}");
+        // Nonsense is ignored.
+        r.core.path_op(PathOp::Ratio(f64::NAN)).unwrap();
+        r.core.path_op(PathOp::Ratio(0.0)).unwrap();
+        let s = r.steps(10).last().unwrap().speed;
+        assert!((s - 100.0).abs() < 1e-3, "{s}");
+        r.core.path_op(PathOp::Ratio(1.0)).unwrap();
+        let s = r.steps(100).last().unwrap().speed;
+        assert!((s - 200.0).abs() < 1e-3, "{s}");
+        let rest = r.until(|c| c.state().in_position());
+        assert!((y(rest.last().unwrap()) - 400.0).abs() < 1e-6);
     }
 
     #[test]

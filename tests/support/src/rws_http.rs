@@ -152,15 +152,7 @@ impl Client {
         let Some(ch) = r.header("www-authenticate").map(str::to_string) else {
             return r;
         };
-        let mut prompt = digest_auth::parse(&ch).unwrap();
-        let ctx = digest_auth::AuthContext::new_with_method(
-            self.user.as_str(),
-            self.password.as_str(),
-            path,
-            None::<&[u8]>,
-            digest_auth::HttpMethod(method.to_string().into()),
-        );
-        let auth = prompt.respond(&ctx).unwrap().to_header_string();
+        let auth = self.authorization(method, path, &ch);
         let r = self.send(method, path, body, Some(&auth));
         self.keep_cookies(&r);
         r
@@ -173,7 +165,13 @@ impl Client {
         let ch = self.send(method, path, body, None);
         self.cookies = cookies;
         let ch = ch.header("www-authenticate").unwrap().to_string();
-        let mut prompt = digest_auth::parse(&ch).unwrap();
+        let auth = self.authorization(method, path, &ch);
+        self.send(method, path, body, Some(&auth))
+    }
+
+    /// The `Authorization` header answering a digest challenge for this request.
+    fn authorization(&self, method: &str, path: &str, challenge: &str) -> String {
+        let mut prompt = digest_auth::parse(challenge).unwrap();
         let ctx = digest_auth::AuthContext::new_with_method(
             self.user.as_str(),
             self.password.as_str(),
@@ -181,12 +179,38 @@ impl Client {
             None::<&[u8]>,
             digest_auth::HttpMethod(method.to_string().into()),
         );
-        let auth = prompt.respond(&ctx).unwrap().to_header_string();
-        self.send(method, path, body, Some(&auth))
+        prompt.respond(&ctx).unwrap().to_header_string()
     }
 
     pub fn get(&mut self, path: &str) -> Resp {
         self.request("GET", path, b"")
+    }
+
+    /// A client of `Default User` that has logged in (its first request answered 200).
+    pub fn login(addr: SocketAddr) -> Client {
+        let mut c = Client::new(addr, "Default User", "robotics");
+        let r = c.get("/rw/panel/ctrlstate?json=1");
+        assert_eq!(r.status, 200, "{}", r.text());
+        c
+    }
+
+    /// The first `_state` entry of a resource in the JSON representation.
+    pub fn state(&mut self, path: &str) -> serde_json::Value {
+        let sep = if path.contains('?') { '&' } else { '?' };
+        self.get(&format!("{path}{sep}json=1")).json()["_embedded"]["_state"][0].clone()
+    }
+
+    /// The event log's codes (`rw/elog/0`), oldest first as served.
+    pub fn elog_codes(&mut self) -> Vec<String> {
+        let log = self.get("/rw/elog/0?json=1").json();
+        log["_embedded"]["_state"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|e| e["code"].as_str().map(str::to_string))
+                    .collect()
+            })
+            .unwrap_or_default()
     }
 
     pub fn post(&mut self, path: &str, form: &str) -> Resp {
