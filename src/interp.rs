@@ -193,6 +193,9 @@ pub struct Interp {
     late_name: String,
     late_values: Vec<Value>,
     late_args: rustc_hash::FxHashMap<(usize, u32), call::LateArgs>,
+    /// Late-bound calls: per call site (and module), the names called there and what each resolved to
+    /// (cleared with `late_args` when modules are loaded or unloaded).
+    late_sites: rustc_hash::FxHashMap<(usize, u32), Vec<call::LateHit>>,
     /// Stack address when the current run started, and how much stack it may use.
     stack_base: usize,
     stack_budget: usize,
@@ -282,6 +285,7 @@ impl Interp {
             late_name: String::new(),
             late_values: Vec::new(),
             late_args: rustc_hash::FxHashMap::default(),
+            late_sites: rustc_hash::FxHashMap::default(),
             stack_base: 0,
             stack_budget: 1 << 20,
             errno: 0,

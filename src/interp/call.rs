@@ -15,6 +15,18 @@ use crate::source::Span;
 /// for none).
 pub(crate) type LateArgs = std::sync::Arc<[(Arg, u32)]>;
 
+/// A name called at a late-bound call site, the procedure it found and the arguments
+/// matched to its parameters.
+pub(crate) struct LateHit {
+    name: Box<str>,
+    rid: RoutineId,
+    args: LateArgs,
+}
+
+/// The most names a late-bound call site remembers (a site calling more looks the others
+/// up on every call).
+const LATE_NAMES_PER_SITE: usize = 16;
+
 /// Deepest call nesting before execution is aborted (a runaway recursion guard).
 pub(crate) const MAX_DEPTH: usize = 10_000;
 
@@ -487,40 +499,35 @@ impl Interp {
         // in the caller's.
         let callee = self.code.clone();
         let p = &*callee.prog;
-        let (modname, procname) = match name.split_once(':') {
-            Some((m, r)) => (Some(m.trim()), r.trim()),
-            None => (None, name.trim()),
-        };
-        let mut key = std::mem::take(&mut self.late_name);
-        key.clear();
-        key.push_str(procname);
-        key.make_ascii_uppercase();
-        let found = p.procs_by_name.get(key.as_str()).and_then(|list| {
-            list.iter().copied().find(|&rid| {
-                let r = p.routine(rid);
-                let mname = &p.modules[r.module.0 as usize].name;
-                let module_ok = match modname {
-                    Some(m) => mname.eq_ignore_ascii_case(m),
-                    None => !r.local || r.module == module,
-                };
-                module_ok && r.kind == RoutineKind::Proc
-            })
-        });
-        self.late_name = key;
-        let Some(rid) = found else {
-            return Err(self.error(
-                errnum::ERR_REFUNKPRC,
-                span,
-                format!("there is no procedure `{name}`"),
-            ));
-        };
-        let site = (args.as_ptr() as usize, rid.0);
-        let lowered = match self.late_args.get(&site) {
-            Some(l) => l.clone(),
+        let site = args.as_ptr() as usize;
+        // Sites without arguments share an address: the module tells their lookups apart.
+        let key = (site, module.0);
+        let known = self
+            .late_sites
+            .get(&key)
+            .and_then(|hits| hits.iter().find(|h| &*h.name == name))
+            .map(|h| (h.rid, h.args.clone()));
+        let (rid, lowered) = match known {
+            Some(k) => k,
             None => {
-                let l: LateArgs = self.lower_late_args(p, rid, args, span)?.into();
-                self.late_args.insert(site, l.clone());
-                l
+                let rid = self.find_late(p, name, module, span)?;
+                let lowered = match self.late_args.get(&(site, rid.0)) {
+                    Some(l) => l.clone(),
+                    None => {
+                        let l: LateArgs = self.lower_late_args(p, rid, args, span)?.into();
+                        self.late_args.insert((site, rid.0), l.clone());
+                        l
+                    }
+                };
+                let hits = self.late_sites.entry(key).or_default();
+                if hits.len() < LATE_NAMES_PER_SITE {
+                    hits.push(LateHit {
+                        name: name.into(),
+                        rid,
+                        args: lowered.clone(),
+                    });
+                }
+                (rid, lowered)
             }
         };
         let r = p.routine(rid);
@@ -544,6 +551,44 @@ impl Interp {
         values.clear();
         self.late_values = values;
         r
+    }
+
+    /// The procedure a late-bound call in `module` at `span` names (`name` or
+    /// `module:name`, in any case) in program `p`.
+    fn find_late(
+        &mut self,
+        p: &Program,
+        name: &str,
+        module: crate::ir::ModuleId,
+        span: Span,
+    ) -> Exec<RoutineId> {
+        let (modname, procname) = match name.split_once(':') {
+            Some((m, r)) => (Some(m.trim()), r.trim()),
+            None => (None, name.trim()),
+        };
+        let mut key = std::mem::take(&mut self.late_name);
+        key.clear();
+        key.push_str(procname);
+        key.make_ascii_uppercase();
+        let found = p.procs_by_name.get(key.as_str()).and_then(|list| {
+            list.iter().copied().find(|&rid| {
+                let r = p.routine(rid);
+                let mname = &p.modules[r.module.0 as usize].name;
+                let module_ok = match modname {
+                    Some(m) => mname.eq_ignore_ascii_case(m),
+                    None => !r.local || r.module == module,
+                };
+                module_ok && r.kind == RoutineKind::Proc
+            })
+        });
+        self.late_name = key;
+        found.ok_or_else(|| {
+            self.error(
+                errnum::ERR_REFUNKPRC,
+                span,
+                format!("there is no procedure `{name}`"),
+            )
+        })
     }
 
     /// The value arguments of a late-bound call of `r`, evaluated and checked.

@@ -378,7 +378,7 @@ impl<'p> Cx<'p> {
                     })
                 })
                 .collect();
-            return flow::Cases::NumK((num::num(self, subject), subject.span), vals);
+            return flow::Cases::num_consts((num::num(self, subject), subject.span), vals);
         }
         if self.is_num(subject) && all(&|e| self.is_num(e)) {
             let vals = cases
@@ -401,7 +401,15 @@ impl<'p> Cx<'p> {
                         .collect()
                 })
                 .collect();
-            return flow::Cases::Str(val::value(self, subject), vals);
+            return match subject.kind {
+                // Read where it is: compared without a copy.
+                crate::ir::ExprKind::Local(_)
+                | crate::ir::ExprKind::Global(_)
+                | crate::ir::ExprKind::Load(_) => {
+                    flow::Cases::StrAt(val::StrPart::new(self, subject), vals)
+                }
+                _ => flow::Cases::Str(val::value(self, subject), vals),
+            };
         }
         flow::Cases::Any(
             subject.clone(),

@@ -223,6 +223,7 @@ impl Interp {
         self.code = Arc::new(compile::Code::new(new.clone(), self.engine, &standard));
         self.prog = new.clone();
         self.late_args.clear();
+        self.late_sites.clear();
         self.module_values = new
             .globals
             .iter()

@@ -88,6 +88,53 @@ MODULE control
     Assert r = "aabc";
   ENDPROC
 
+  PROC test_test_case_table()
+    ! Integer constant cases (a jump table): a CASE listed twice goes to the first,
+    ! a fraction or a value outside the range to the DEFAULT, negative values too.
+    VAR string r;
+    VAR num xs{8} := [-2, 0, 1, 2, 2.5, 5, 7, 1000];
+    FOR k FROM 1 TO 8 DO
+      TEST xs{k}
+      CASE -2:
+        r := r + "m";
+      CASE 0, 2:
+        r := r + "z";
+      CASE 1, 2, 5:
+        r := r + "o";
+      CASE 7:
+        r := r + "s";
+      DEFAULT:
+        r := r + "-";
+      ENDTEST
+    ENDFOR
+    Assert r = "mzoz-os-";
+  ENDPROC
+
+  PROC test_test_case_strings()
+    ! String cases against a local, a global-like array element and a computed string.
+    CONST string words{4} := ["red", "Red", "blue", ""];
+    VAR string w;
+    VAR string r;
+    FOR k FROM 1 TO 4 DO
+      w := words{k};
+      TEST w
+      CASE "red", "blue":
+        r := r + "c";
+      CASE "":
+        r := r + "e";
+      DEFAULT:
+        r := r + "-";
+      ENDTEST
+      TEST words{k}
+      CASE "Red":
+        r := r + "R";
+      DEFAULT:
+        r := r + ".";
+      ENDTEST
+    ENDFOR
+    Assert r = "c.-Rc.e.";
+  ENDPROC
+
   PROC test_goto()
     VAR num i := 0;
     again:

@@ -136,6 +136,22 @@ MODULE routines
     Assert vcount = 6;
   ENDPROC
 
+  PROC late_other(num v)
+    vcount := -v;
+  ENDPROC
+
+  PROC test_late_binding_names_at_one_site()
+    ! One call site calling several procedures by names in any case: each name finds
+    ! its own procedure every time (what the site remembers keeps them apart).
+    CONST string names{4} := ["late_target", "LATE_OTHER", "Late_Target", "late_other"];
+    VAR num sum := 0;
+    FOR k FROM 1 TO 8 DO
+      %names{(k - 1) MOD 4 + 1}% k;
+      sum := sum + vcount;
+    ENDFOR
+    Assert sum = 1 - 2 + 3 - 4 + 5 - 6 + 7 - 8;
+  ENDPROC
+
   PROC test_late_binding_unknown()
     %"no_such_proc"%;
     Assert FALSE;

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::val::ValFn;
+use super::val::{StrPart, ValFn};
 use super::{CBlock, Code, NumFn};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
@@ -30,6 +30,43 @@ pub(crate) struct CTest {
     pub default: Option<CBlock>,
 }
 
+/// A slot of [`Cases::Table`] that no CASE has.
+pub(crate) const NO_CASE: u32 = u32::MAX;
+
+/// The widest range of integer case values [`Cases::Table`] is built for.
+const MAX_TABLE: i64 = 256;
+
+impl Cases {
+    /// The cases of a `num` subject with constant values: a table when they are integers
+    /// in a small range (a CASE listed earlier wins, as in the search in order), else the
+    /// values in order.
+    pub(crate) fn num_consts(subject: SpannedNum, vals: Vec<(f32, usize)>) -> Cases {
+        let ints: Option<Vec<(i64, usize)>> = vals
+            .iter()
+            .map(|&(x, k)| (x.fract() == 0.0 && x.abs() < 1e9).then_some((x as i64, k)))
+            .collect();
+        if let Some(ints) = ints
+            && let (Some(lo), Some(hi)) = (
+                ints.iter().map(|p| p.0).min(),
+                ints.iter().map(|p| p.0).max(),
+            )
+            && hi - lo < MAX_TABLE
+            && let Ok(lo32) = i32::try_from(lo)
+        {
+            let mut table = vec![NO_CASE; (hi - lo + 1) as usize];
+            for (i, k) in ints {
+                if let Some(slot) = table.get_mut((i - lo) as usize)
+                    && *slot == NO_CASE
+                {
+                    *slot = k as u32;
+                }
+            }
+            return Cases::Table(subject, lo32, table.into());
+        }
+        Cases::NumK(subject, vals.into())
+    }
+}
+
 /// A compiled `num` and its span.
 pub(crate) type SpannedNum = (NumFn, Span);
 
@@ -37,6 +74,11 @@ pub(crate) type SpannedNum = (NumFn, Span);
 pub(crate) enum Cases {
     /// A `num` subject with constant case values: (value, index of its CASE), in order.
     NumK(SpannedNum, Box<[(f32, usize)]>),
+    /// A `num` subject with integer constant case values in a small range: the CASE of
+    /// `lo + i` at `i` ([`NO_CASE`] for none).
+    Table(SpannedNum, i32, Box<[u32]>),
+    /// A string subject read where it is, with constant case strings.
+    StrAt(StrPart, Box<[Box<[Arc<str>]>]>),
     /// A `num` subject with `num` case values, compared as numbers.
     Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
     /// A string subject with constant case strings.
@@ -90,6 +132,22 @@ impl Interp {
                 let x = self.cnum(c, subject)?;
                 vals.iter().find(|(v, _)| *v == x).map(|(_, k)| *k)
             }
+            Cases::Table(subject, lo, table) => {
+                let x = self.cnum(c, subject)?;
+                // Only an integer can equal a case value (NaN has been refused above).
+                let i = (x as i64).checked_sub(i64::from(*lo)).unwrap_or(-1);
+                match usize::try_from(i) {
+                    Ok(i) if x.fract() == 0.0 => table
+                        .get(i)
+                        .copied()
+                        .filter(|&k| k != NO_CASE)
+                        .map(|k| k as usize),
+                    _ => None,
+                }
+            }
+            Cases::StrAt(subject, cases) => subject.with(self, c, |s| {
+                cases.iter().position(|vals| vals.iter().any(|v| &**v == s))
+            })?,
             Cases::Num(subject, cases) => {
                 let x = self.cnum(c, subject)?;
                 let mut hit = None;
