@@ -395,13 +395,13 @@ impl<'p> Cx<'p> {
                 .map(|(vals, _)| {
                     vals.iter()
                         .filter_map(|e| match &e.kind {
-                            crate::ir::ExprKind::Str(s) => Some(s.clone()),
+                            crate::ir::ExprKind::Str(s) => Some(Box::<str>::from(&**s)),
                             _ => None,
                         })
                         .collect()
                 })
                 .collect();
-            return flow::Cases::Str(val::value(self, subject), vals);
+            return flow::Cases::Str(val::StrPart::new(self, subject), vals);
         }
         flow::Cases::Any(
             subject.clone(),
