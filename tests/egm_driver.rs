@@ -855,7 +855,7 @@ mod path_correction {
     use super::*;
     use rapidvc::egm::driver::{CorrectionInput, CorrectionLink};
     use rapidvc::egm::path_correction::{SeamProfile, Tracker};
-    use rapidvc::egm::registry::{ActMove, SetupLtapp, TrackerKind};
+    use rapidvc::egm::registry::{SetupLtapp, TrackerKind};
     use rapidvc::robot::WobjData;
     use rapidvc_testkit::egm_pair::corrections;
 
@@ -864,16 +864,7 @@ mod path_correction {
         rapidvc_testkit::egm_pair::registry(overrides, true)
     }
 
-    fn act_move(reg: &mut EgmRegistry, id: rapidvc::egm::EgmId) {
-        reg.act_move(
-            id,
-            &ActMove {
-                sensor_frame: t_fronius_cmt().tframe,
-                sample_rate: Some(48.0),
-            },
-        )
-        .unwrap();
-    }
+    use rapidvc_testkit::egm_pair::act_move_48ms as act_move;
 
     #[test]
     fn udpuc_builtin_corrections_every_48_ms_drive_the_path_corrector() {

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use rapidvc::egm::proto::egm_mci_state::MciStateType;
-use rapidvc::egm::registry::{ActJoint, ActMove, ActPose, RunArgs, SetupUc, TrackerKind};
+use rapidvc::egm::registry::{ActJoint, ActPose, RunArgs, SetupUc, TrackerKind};
 use rapidvc::egm::servo::{ServoPhase, StopMode};
 use rapidvc::egm::{
     CorrState, CorrectionLink, DatagramMachine, DriverContext, DriverOptions, EgmDriver, EgmEnd,
@@ -21,7 +21,7 @@ use rapidvc::robot::{Robot, ToolData};
 use rapidvc::signals::SignalTable;
 use rapidvc::time::RobotTime;
 use rapidvc_testkit::egm_pair::{
-    Pair, SENSOR, Scripted, SensorEnd, builtin, corrections, registry,
+    Pair, SENSOR, Scripted, SensorEnd, act_move_48ms, builtin, corrections, registry,
 };
 use rapidvc_testkit::egm_wire::{joint_reply, pose_reply};
 use rapidvc_testkit::robot::t_fronius_cmt;
@@ -272,14 +272,7 @@ fn path_correction_run_with_the_builtin_sensor_drives_the_corrector() {
     uc.profile = "pathCorr".into();
     uc.tracker = Some(TrackerKind::Aptr);
     reg.setup_uc(id, &uc).unwrap();
-    reg.act_move(
-        id,
-        &ActMove {
-            sensor_frame: t_fronius_cmt().tframe,
-            sample_rate: Some(48.0),
-        },
-    )
-    .unwrap();
+    act_move_48ms(&mut reg, id);
     let plan = reg.move_start(id, "EGMMoveL").unwrap();
     assert_eq!(reg.state(id), (EgmState::Running, CorrState::Running));
     let source = EgmSource::new(&plan.source);

@@ -6,7 +6,7 @@
 //! none written, created, renamed or removed.
 
 use rapidvc_testkit::rapidvc;
-use std::collections::BTreeMap;
+use rapidvc_testkit::sandbox::Attack;
 use std::path::{Path, PathBuf};
 
 fn tmp(name: &str) -> PathBuf {
@@ -14,25 +14,6 @@ fn tmp(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).expect("temp dir");
     d
-}
-
-/// Every file under `dir` with its content (a snapshot to compare).
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("read dir").flatten() {
-            let p = e.path();
-            let m = std::fs::symlink_metadata(&p).expect("metadata");
-            if m.is_dir() {
-                stack.push(p.clone());
-                out.insert(p, b"<dir>".to_vec());
-            } else {
-                out.insert(p.clone(), std::fs::read(&p).unwrap_or_default());
-            }
-        }
-    }
-    out
 }
 
 const SECRET: &str = "secret: never to be read by RAPID";
@@ -97,33 +78,10 @@ fn program(outside: &Path) -> String {
 #[cfg(unix)]
 #[test]
 fn no_path_leaves_home() {
-    let root = tmp("attack");
-    let home = root.join("home");
-    let outside = root.join("outside");
-    std::fs::create_dir_all(&home).unwrap();
-    std::fs::create_dir_all(&outside).unwrap();
-    std::fs::write(outside.join("secret.txt"), SECRET).unwrap();
-    std::os::unix::fs::symlink(outside.join("secret.txt"), home.join("link.txt")).unwrap();
-    std::os::unix::fs::symlink(&outside, home.join("out")).unwrap();
-    let before = snapshot(&outside);
-
-    let prog_dir = root.join("prog");
-    std::fs::create_dir_all(&prog_dir).unwrap();
-    let prog = prog_dir.join("attack.mod");
-    std::fs::write(&prog, program(&outside)).unwrap();
-
-    let out = rapidvc!()
-        .arg("run")
-        .arg("--home")
-        .arg(&home)
-        .arg(&prog)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run rapidvc");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stdout}\n{stderr}");
-    assert!(stdout.ends_with("done\n"), "{stdout}\n{stderr}");
+    let attack = Attack::new("attack", "secret.txt", SECRET, "link.txt");
+    let (home, outside) = (&attack.home, &attack.outside);
+    let before = attack.snapshot_outside();
+    let (stdout, stderr) = attack.run(rapidvc!(), &program(outside));
     assert!(!stdout.contains("NO ERROR"), "{stdout}");
     assert!(!stdout.contains("other"), "{stdout}");
     assert!(!stdout.contains("listed"), "{stdout}");
@@ -151,7 +109,7 @@ fn no_path_leaves_home() {
     assert_eq!(stdout.lines().filter(|l| l.contains(": ERR_")).count(), 28);
 
     // Nothing outside HOME changed, the links are still there, nothing was stolen.
-    assert_eq!(snapshot(&outside), before);
+    assert_eq!(attack.snapshot_outside(), before);
     assert_eq!(
         std::fs::read_to_string(outside.join("secret.txt")).unwrap(),
         SECRET
@@ -168,14 +126,13 @@ fn no_path_leaves_home() {
         "inside\n"
     );
     // Only what the program wrote is in HOME (no temporary files left behind).
-    let mut names: Vec<String> = std::fs::read_dir(&home)
+    let mut names: Vec<String> = std::fs::read_dir(home)
         .unwrap()
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
     assert_eq!(names, ["inside.txt", "link.txt", "out"]);
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 #[test]

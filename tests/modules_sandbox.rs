@@ -6,17 +6,8 @@
 //! it was.
 
 use rapidvc_testkit::rapidvc;
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-
-/// Every file under `dir` with its content.
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    std::fs::read_dir(dir)
-        .expect("read dir")
-        .flatten()
-        .map(|e| (e.path(), std::fs::read(e.path()).unwrap_or_default()))
-        .collect()
-}
+use rapidvc_testkit::sandbox::Attack;
+use std::path::Path;
 
 const OUTSIDE_MODULE: &str = "MODULE stolen\n  PROC stolen_run()\n  ENDPROC\nENDMODULE\n";
 
@@ -94,31 +85,10 @@ fn program(outside: &Path) -> String {
 #[cfg(unix)]
 #[test]
 fn no_module_comes_from_or_goes_out_of_home() {
-    let root = std::env::temp_dir().join(format!("rapidvc-modsandbox-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
-    let (home, outside, prog_dir) = (root.join("home"), root.join("outside"), root.join("prog"));
-    for d in [&home, &outside, &prog_dir] {
-        std::fs::create_dir_all(d).unwrap();
-    }
-    std::fs::write(outside.join("stolen.mod"), OUTSIDE_MODULE).unwrap();
-    std::os::unix::fs::symlink(outside.join("stolen.mod"), home.join("link.mod")).unwrap();
-    std::os::unix::fs::symlink(&outside, home.join("out")).unwrap();
-    let before = snapshot(&outside);
-    let prog = prog_dir.join("attack.mod");
-    std::fs::write(&prog, program(&outside)).unwrap();
-
-    let out = rapidvc!()
-        .arg("run")
-        .arg("--home")
-        .arg(&home)
-        .arg(&prog)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run rapidvc");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stdout}\n{stderr}");
-    assert!(stdout.ends_with("done\n"), "{stdout}\n{stderr}");
+    let attack = Attack::new("modules", "stolen.mod", OUTSIDE_MODULE, "link.mod");
+    let home = &attack.home;
+    let before = attack.snapshot_outside();
+    let (stdout, _) = attack.run(rapidvc!(), &program(&attack.outside));
     for bad in ["NO ERROR", "other", "stolen loaded"] {
         assert!(!stdout.contains(bad), "{stdout}");
     }
@@ -129,7 +99,7 @@ fn no_module_comes_from_or_goes_out_of_home() {
     );
     let refused = stdout.lines().filter(|l| l.ends_with(": ERR_FILEACC"));
     assert_eq!(refused.count(), 11, "{stdout}");
-    assert_eq!(snapshot(&outside), before);
+    assert_eq!(attack.snapshot_outside(), before);
     assert_eq!(
         std::fs::read_to_string(home.join("mine.mod")).unwrap(),
         "MODULE mine\nENDMODULE\n"
@@ -139,5 +109,4 @@ fn no_module_comes_from_or_goes_out_of_home() {
             .unwrap()
             .is_symlink()
     );
-    let _ = std::fs::remove_dir_all(&root);
 }

@@ -84,6 +84,14 @@ fn args(list: &[&str]) -> Vec<String> {
     list.iter().map(|s| s.to_string()).collect()
 }
 
+/// The straight seam run in lockstep with the sensor on `port`, tracing to `trace`.
+fn straight_in_lockstep(port: u16, trace: &std::path::Path) -> Ended {
+    let device = format!("UCdevice=127.0.0.1:{port}");
+    let trace = trace.to_str().unwrap();
+    let args = args(&["--device", &device, "--lockstep", "--trace", trace]);
+    run_program(rapidvc!(), STRAIGHT, &args, LIMIT)
+}
+
 fn ok(run: &Ended) {
     assert_eq!(run.code, Some(0), "{}\n{}", run.stdout, run.stderr);
 }
@@ -403,18 +411,7 @@ mod udp {
             Duration::from_secs(2),
         );
         let trace_path = temp("nan.csv");
-        let run = run_program(
-            rapidvc!(),
-            STRAIGHT,
-            &args(&[
-                "--device",
-                &format!("UCdevice=127.0.0.1:{port}"),
-                "--lockstep",
-                "--trace",
-                trace_path.to_str().unwrap(),
-            ]),
-            LIMIT,
-        );
+        let run = straight_in_lockstep(port, &trace_path);
         ok(&run);
         assert!(
             run.stderr
@@ -482,18 +479,7 @@ mod clients {
             ],
         );
         let trace_path = temp(&format!("{client}.csv"));
-        let run = run_program(
-            rapidvc!(),
-            STRAIGHT,
-            &args(&[
-                "--device",
-                &format!("UCdevice=127.0.0.1:{port}"),
-                "--lockstep",
-                "--trace",
-                trace_path.to_str().unwrap(),
-            ]),
-            LIMIT,
-        );
+        let run = straight_in_lockstep(port, &trace_path);
         let c = sensor.wait(Duration::from_secs(30));
         ok(&run);
         assert!(!run.stderr.contains("41822"), "{}", run.stderr);

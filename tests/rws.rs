@@ -51,6 +51,41 @@ fn stopped(c: &mut Client) -> bool {
     state(c, "/rw/rapid/execution")["ctrlexecstate"] == "stopped"
 }
 
+/// A controller serving `tests/serve/` with the `moves` routine as its entry.
+fn start_moves(tag: &str) -> Serve {
+    Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        tag,
+        "tests/serve",
+        &["--entry", "moves"],
+    )
+}
+
+/// Starts RAPID execution in a cycle mode (`once`, `forever`, `asis`); the write must answer 204.
+fn start_program(c: &mut Client, cycle: &str) {
+    let r = c.post(
+        "/rw/rapid/execution?action=start",
+        &format!("cycle={cycle}"),
+    );
+    assert_eq!(r.status, 204, "start {cycle}: {}", r.text());
+}
+
+/// Stops RAPID execution; the write must answer 204.
+fn stop_program(c: &mut Client) {
+    let r = c.post("/rw/rapid/execution?action=stop", "");
+    assert_eq!(r.status, 204, "stop: {}", r.text());
+}
+
+/// Polls a live controller every 20 ms until `done`, for at most `secs` seconds.
+fn within(secs: u64, what: &str, done: impl FnMut() -> bool) {
+    wait_until(
+        Duration::from_secs(secs),
+        Duration::from_millis(20),
+        what,
+        done,
+    );
+}
+
 #[test]
 fn no_resource_answers_without_login() {
     let srv = start("nologin");
@@ -520,19 +555,10 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
             .unwrap()
     };
     let wait_for = |c: &mut Client, what: &str, ok: &dyn Fn(&mut Client) -> bool| {
-        wait_until(
-            Duration::from_secs(10),
-            Duration::from_millis(50),
-            what,
-            || ok(c),
-        );
+        within(10, what, || ok(c));
     };
     assert_eq!(cycles(&mut c), 0.0, "nothing runs before a start");
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=forever")
-            .status,
-        204
-    );
+    start_program(&mut c, "forever");
     wait_for(&mut c, "the program runs", &|c| cycles(c) >= 3.0);
     // PERS written over RWS is what RAPID reads next.
     assert_eq!(
@@ -563,17 +589,13 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
         c.post("/rw/rapid/execution?action=resetpp", "").status >= 400,
         "resetpp while running"
     );
-    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    stop_program(&mut c);
     std::thread::sleep(Duration::from_millis(200));
     let stopped_at = cycles(&mut c);
     std::thread::sleep(Duration::from_millis(400));
     assert_eq!(cycles(&mut c), stopped_at, "a stopped program does not run");
     // Start continues from the program pointer (the cycle mode kept as it was).
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=asis")
-            .status,
-        204
-    );
+    start_program(&mut c, "asis");
     let v = c.get("/rw/rapid/execution?json=1").json();
     assert_eq!(v["_embedded"]["_state"][0]["cycle"], "forever");
     wait_for(&mut c, "the program goes on", &|c| cycles(c) > stopped_at);
@@ -585,17 +607,13 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
     );
     let v = c.get("/rw/rapid/execution?json=1").json();
     assert_eq!(v["_embedded"]["_state"][0]["ctrlexecstate"], "stopped");
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=asis")
-            .status,
-        204
-    );
+    start_program(&mut c, "asis");
     wait_for(&mut c, "RAPID sees OP_MAN_PROG", &|c| {
         c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/opmode_seen?json=1")
             .json()["_embedded"]["_state"][0]["value"]
             == "2"
     });
-    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    stop_program(&mut c);
     assert_eq!(c.post("/rw/rapid/execution?action=resetpp", "").status, 204);
     // Motors off: start is refused.
     assert_eq!(
@@ -630,80 +648,33 @@ fn the_program_stops_keeps_its_pointer_and_shares_data_and_signals() {
 
 #[test]
 fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
-    let srv = Serve::start(
-        rapidvc_testkit::rapidvc!(),
-        "moves",
-        "tests/serve",
-        &["--entry", "moves"],
-    );
+    let srv = start_moves("moves");
     let mut c = login(&srv);
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=once")
-            .status,
-        204
-    );
-    wait_until(
-        Duration::from_secs(10),
-        Duration::from_millis(20),
-        "the robot moves",
-        || j1(&mut c) >= 3.0,
-    );
-    assert_eq!(c.post("/rw/rapid/execution?action=stop", "").status, 204);
+    start_program(&mut c, "once");
+    within(10, "the robot moves", || j1(&mut c) >= 3.0);
+    stop_program(&mut c);
     std::thread::sleep(Duration::from_millis(500));
     let held = j1(&mut c);
     std::thread::sleep(Duration::from_millis(300));
     assert_eq!(j1(&mut c), held, "the robot stands while stopped");
     assert!(held > 3.0 && held < 29.0, "stopped on the way: {held}");
     assert!(!reached(&mut c), "the program waits in its move");
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=asis")
-            .status,
-        204
-    );
-    wait_until(
-        Duration::from_secs(15),
-        Duration::from_millis(50),
-        "the move ends",
-        || reached(&mut c),
-    );
+    start_program(&mut c, "asis");
+    within(15, "the move ends", || reached(&mut c));
     // The served position is refreshed every 20 ms (docs/rws.md): it reaches the target
     // within a few refreshes of the program's `reached`.
-    wait_until(
-        Duration::from_secs(2),
-        Duration::from_millis(20),
-        "at the target",
-        || (j1(&mut c) - 30.0).abs() < 0.01,
-    );
+    within(2, "at the target", || (j1(&mut c) - 30.0).abs() < 0.01);
     // A single cycle ended: execution stopped.
-    wait_until(
-        Duration::from_secs(5),
-        Duration::from_millis(20),
-        "stopped after once",
-        || stopped(&mut c),
-    );
+    within(5, "stopped after once", || stopped(&mut c));
 }
 
 #[test]
 fn the_speed_ratio_scales_the_moves_planned_after_it() {
-    let srv = Serve::start(
-        rapidvc_testkit::rapidvc!(),
-        "speedratio",
-        "tests/serve",
-        &["--entry", "moves"],
-    );
+    let srv = start_moves("speedratio");
     let mut c = login(&srv);
     let timed_run = |c: &mut Client| -> f64 {
-        assert_eq!(
-            c.post("/rw/rapid/execution?action=start", "cycle=once")
-                .status,
-            204
-        );
-        wait_until(
-            Duration::from_secs(30),
-            Duration::from_millis(50),
-            "the run ends",
-            || reached(c) && stopped(c),
-        );
+        start_program(c, "once");
+        within(30, "the run ends", || reached(c) && stopped(c));
         c.get("/rw/rapid/symbol/data/RAPID/T_ROB1/move_time?json=1")
             .json()["_embedded"]["_state"][0]["value"]
             .as_str()
@@ -728,24 +699,10 @@ fn the_speed_ratio_scales_the_moves_planned_after_it() {
 
 #[test]
 fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
-    let srv = Serve::start(
-        rapidvc_testkit::rapidvc!(),
-        "sigint",
-        "tests/serve",
-        &["--entry", "moves"],
-    );
+    let srv = start_moves("sigint");
     let mut c = login(&srv);
-    assert_eq!(
-        c.post("/rw/rapid/execution?action=start", "cycle=once")
-            .status,
-        204
-    );
-    wait_until(
-        Duration::from_secs(10),
-        Duration::from_millis(20),
-        "the robot moves",
-        || j1(&mut c) > 3.0,
-    );
+    start_program(&mut c, "once");
+    within(10, "the robot moves", || j1(&mut c) > 3.0);
     let ended = srv.stop(Duration::from_secs(20));
     assert_eq!(ended.code, Some(0), "{ended:?}");
     assert!(!ended.timed_out, "{ended:?}");

@@ -16,18 +16,8 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn run(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = rapidvc!()
-        .arg("run")
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("run rapidvc");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let args: Vec<&str> = std::iter::once("run").chain(args.iter().copied()).collect();
+    rapidvc_testkit::procs::output_in(rapidvc!(), dir, &args, 80)
 }
 
 /// A program that changes the configuration database and saves it (SaveCfgData examples of

@@ -390,24 +390,9 @@ fn ten_minute_run_replays_in_chromium() {
 )]
 fn live_page_follows_a_real_time_run_in_chromium() {
     let _one = one_browser();
-    use std::io::{BufRead, BufReader, Read};
     let p = blank("live");
-    let mut child = rapidvc!()
-        .args(["run", "tests/view/live_run.mod", "--view-live"])
-        .current_dir(root())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("start rapidvc");
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut first = String::new();
-    stderr.read_line(&mut first).expect("stderr");
-    let url = first
-        .strip_prefix("live view: ")
-        .and_then(|r| r.split_whitespace().next())
-        .unwrap_or_else(|| panic!("no URL in {first:?}"))
-        .to_string();
-    p.go(&url);
+    let live = view_page::LiveRun::start(rapidvc!(), &root(), "tests/view/live_run.mod");
+    p.go(&live.url);
     // Rows arrive while the program runs; the page ends on the run's last state.
     let deadline = Instant::now() + Duration::from_secs(30);
     while p.eval("document.getElementById('status').textContent") != "live · run ended" {
@@ -425,9 +410,7 @@ fn live_page_follows_a_real_time_run_in_chromium() {
     }
     p.screenshot(&out_dir().join("live_end.png"));
     assert!(p.problems().is_empty(), "{:?}", p.problems());
-    let status = child.wait().expect("rapidvc ends");
-    let mut rest = String::new();
-    stderr.read_to_string(&mut rest).unwrap();
+    let (status, rest) = live.finish();
     assert!(status.success(), "{rest}");
     eprintln!("with the live page connected: {}", rest.trim());
 }

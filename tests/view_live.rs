@@ -4,10 +4,10 @@
 //! `/view` of another axum server.
 
 use rapidvc_testkit::rapidvc;
-use std::io::{BufRead, BufReader, Read, Write};
+use rapidvc_testkit::view_page::LiveRun;
+use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::PathBuf;
-use std::process::Stdio;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -63,20 +63,12 @@ async fn read_stream(url: &str) -> Vec<Value> {
 
 #[test]
 fn a_live_run_streams_the_robot_to_a_websocket_client() {
-    let mut child = rapidvc!()
-        .args(["run", "tests/view/live_run.mod", "--view-live"])
-        .current_dir(root())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start rapidvc");
-    let mut stderr = BufReader::new(child.stderr.take().unwrap());
-    let mut first = String::new();
-    stderr.read_line(&mut first).expect("stderr");
-    let url = first
-        .strip_prefix("live view: http://")
+    let live = LiveRun::start(rapidvc!(), &root(), "tests/view/live_run.mod");
+    let url = live
+        .url
+        .strip_prefix("http://")
         .and_then(|r| r.split('/').next())
-        .unwrap_or_else(|| panic!("no URL in {first:?}"));
+        .unwrap_or_else(|| panic!("no address in {}", live.url));
     let addr: SocketAddr = url.parse().expect("address");
     assert!(addr.ip().is_loopback(), "binds loopback by default: {addr}");
 
@@ -142,10 +134,8 @@ fn a_live_run_streams_the_robot_to_a_websocket_client() {
     assert_eq!(all, ["to b 1", "to a 1", "to b 2", "to a 2"]);
     assert!(msgs.iter().any(|m| m["type"] == "instr"));
 
-    let status = child.wait().expect("rapidvc ends");
+    let (status, rest) = live.finish();
     drop(stalled);
-    let mut rest = String::new();
-    stderr.read_to_string(&mut rest).unwrap();
     assert!(status.success(), "{rest}");
     assert!(rest.contains("period error"), "real time: {rest}");
 }

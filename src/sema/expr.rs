@@ -354,7 +354,10 @@ impl Checker<'_> {
                 if both_num {
                     let o = if is_eq { BinOp::NumEq } else { BinOp::NumNe };
                     Some((bin(o, l.clone(), r.clone()), Ty::BOOL))
-                } else if (mixed_numeric || lt == rt) && lt.rank == 0 && rt.rank == 0 {
+                } else if (mixed_numeric && lt.rank == 0 && rt.rank == 0) || lt == rt {
+                    // Arrays of a value type compare element by element (a real controller
+                    // backup does `IF names = ["a", "b", "c"] THEN`); their sizes must match
+                    // for `=` to be TRUE.
                     if !self.types.is_value(lt.base) {
                         self.err(
                             K::NonValue {

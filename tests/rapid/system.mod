@@ -60,6 +60,7 @@ MODULE system
   PROC test_getsysinfo()
     Assert GetSysInfo(\SerialNo) = "rapidvc-0000";
     Assert StrPart(GetSysInfo(\SWVersion), 1, 10) = "6.08.00.00";
+    Assert GetSysInfo(\SWVersionName) = "6.08.00.00";
     Assert GetSysInfo(\RobotType) = "IRB 2600-12/1.85";
     Assert GetSysInfo(\CtrlId) = "rapidvc";
     Assert GetSysInfo(\LanIp) = "127.0.0.1";

@@ -38,7 +38,7 @@ pub(super) fn register(r: &mut Registry) {
     );
     // Identity and modes.
     r.add(
-        r"FUNC string GetSysInfo(\switch SerialNo | switch SWVersion | switch RobotType | switch CtrlId | switch LanIp | switch CtrlLang | switch SystemName)",
+        r"FUNC string GetSysInfo(\switch SerialNo | switch SWVersion | switch RobotType | switch CtrlId | switch LanIp | switch CtrlLang | switch SystemName | switch SWVersionName)",
         get_sys_info,
     );
     r.add("FUNC bool IsSysId(string SystemId)", |cx| {
@@ -259,8 +259,8 @@ fn get_time(cx: &mut Ctx<'_>) -> Exec<Value> {
 fn get_sys_info(cx: &mut Ctx<'_>) -> Exec<Value> {
     let which = which_switch(
         cx,
-        7,
-        r"\SerialNo, \SWVersion, \RobotType, \CtrlId, \LanIp, \CtrlLang or \SystemName",
+        8,
+        r"\SerialNo, \SWVersion, \RobotType, \CtrlId, \LanIp, \CtrlLang, \SystemName or \SWVersionName",
     )?;
     let text = with_system(cx, |s, _| {
         let i = &s.info;
@@ -274,7 +274,9 @@ fn get_sys_info(cx: &mut Ctx<'_>) -> Exec<Value> {
             3 => i.ctrl_id.clone(),
             4 => i.lan_ip.clone(),
             5 => i.language.clone(),
-            _ => i.system_name.clone(),
+            6 => i.system_name.clone(),
+            // The version as RWS's `rwversionname` gives it.
+            _ => crate::system::info::ROBOTWARE_VERSION.to_string(),
         }
     })?;
     cx.string(text)

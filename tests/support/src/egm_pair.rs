@@ -129,6 +129,19 @@ pub fn registry(overrides: &[String], path_corr: bool) -> rapidvc::egm::EgmRegis
     ))
 }
 
+/// `EGMActMove` of the manual's path-correction example on `id`: the sensor frame of
+/// `t_fronius_cmt`, a correction every 48 ms.
+pub fn act_move_48ms(reg: &mut rapidvc::egm::EgmRegistry, id: rapidvc::egm::EgmId) {
+    reg.act_move(
+        id,
+        &rapidvc::egm::registry::ActMove {
+            sensor_frame: crate::robot::t_fronius_cmt().tframe,
+            sample_rate: Some(48.0),
+        },
+    )
+    .unwrap();
+}
+
 /// What a path-correction `link` delivered over `ticks` cycles of 4 ms from time zero, with
 /// the robot standing at `start` holding `tool` in `wobj0`, the TCP advancing 0.04 mm along
 /// the path each cycle and no look-ahead: each correction's arrival and position, and the

@@ -9,7 +9,8 @@
 //! - [`robot`]: robot fixtures (tools of the manual's examples) and joint assertions;
 //! - [`src_files`]: the crate's own sources, for the tests that read the code (layers, catalogue);
 //! - [`gen_program`]: large valid RAPID programs for the parser's tests and benchmarks;
-//! - [`rws_http`], [`serve`]: the RWS tests' HTTP client and a real `rapidvc serve`.
+//! - [`rws_http`], [`serve`]: the RWS tests' HTTP client and a real `rapidvc serve`;
+//! - [`sandbox`]: a HOME with links pointing out of it, for the mass-storage attacks.
 //!
 //! The path of the `rapidvc` binary is known only to the test crates (`CARGO_BIN_EXE_rapidvc`
 //! at their compile time): [`rapidvc!`] expands there.
@@ -22,6 +23,7 @@ pub mod gen_program;
 pub mod procs;
 pub mod robot;
 pub mod rws_http;
+pub mod sandbox;
 pub mod serve;
 pub mod src_files;
 pub mod summary;

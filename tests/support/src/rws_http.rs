@@ -152,15 +152,7 @@ impl Client {
         let Some(ch) = r.header("www-authenticate").map(str::to_string) else {
             return r;
         };
-        let mut prompt = digest_auth::parse(&ch).unwrap();
-        let ctx = digest_auth::AuthContext::new_with_method(
-            self.user.as_str(),
-            self.password.as_str(),
-            path,
-            None::<&[u8]>,
-            digest_auth::HttpMethod(method.to_string().into()),
-        );
-        let auth = prompt.respond(&ctx).unwrap().to_header_string();
+        let auth = self.authorization(method, path, &ch);
         let r = self.send(method, path, body, Some(&auth));
         self.keep_cookies(&r);
         r
@@ -173,7 +165,13 @@ impl Client {
         let ch = self.send(method, path, body, None);
         self.cookies = cookies;
         let ch = ch.header("www-authenticate").unwrap().to_string();
-        let mut prompt = digest_auth::parse(&ch).unwrap();
+        let auth = self.authorization(method, path, &ch);
+        self.send(method, path, body, Some(&auth))
+    }
+
+    /// The `Authorization` header answering a digest challenge for this request.
+    fn authorization(&self, method: &str, path: &str, challenge: &str) -> String {
+        let mut prompt = digest_auth::parse(challenge).unwrap();
         let ctx = digest_auth::AuthContext::new_with_method(
             self.user.as_str(),
             self.password.as_str(),
@@ -181,8 +179,7 @@ impl Client {
             None::<&[u8]>,
             digest_auth::HttpMethod(method.to_string().into()),
         );
-        let auth = prompt.respond(&ctx).unwrap().to_header_string();
-        self.send(method, path, body, Some(&auth))
+        prompt.respond(&ctx).unwrap().to_header_string()
     }
 
     pub fn get(&mut self, path: &str) -> Resp {

@@ -103,3 +103,50 @@ pub fn read_trace(path: &std::path::Path) -> Vec<TraceRow> {
         })
         .collect()
 }
+
+/// A `rapidvc run PROGRAM --view-live` started in `dir`, with its printed page address.
+pub struct LiveRun {
+    pub child: std::process::Child,
+    /// The rest of rapidvc's standard error, after the `live view: URL` line.
+    pub stderr: std::io::BufReader<std::process::ChildStderr>,
+    /// The page's address as printed (`http://127.0.0.1:PORT/`).
+    pub url: String,
+}
+
+impl LiveRun {
+    /// Starts the run (`rapidvc`: the command from [`crate::rapidvc!`]; standard output
+    /// discarded) and reads the address from its first line of standard error.
+    pub fn start(
+        mut rapidvc: std::process::Command,
+        dir: &std::path::Path,
+        program: &str,
+    ) -> LiveRun {
+        use std::io::BufRead;
+        use std::process::Stdio;
+        let mut child = rapidvc
+            .args(["run", program, "--view-live"])
+            .current_dir(dir)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start rapidvc");
+        let mut stderr = std::io::BufReader::new(child.stderr.take().expect("piped stderr"));
+        let mut first = String::new();
+        stderr.read_line(&mut first).expect("stderr");
+        let url = first
+            .strip_prefix("live view: ")
+            .and_then(|r| r.split_whitespace().next())
+            .unwrap_or_else(|| panic!("no URL in {first:?}"))
+            .to_string();
+        LiveRun { child, stderr, url }
+    }
+
+    /// Waits for the run to end: its exit status and the rest of its standard error.
+    pub fn finish(mut self) -> (std::process::ExitStatus, String) {
+        use std::io::Read;
+        let status = self.child.wait().expect("rapidvc ends");
+        let mut rest = String::new();
+        self.stderr.read_to_string(&mut rest).expect("stderr");
+        (status, rest)
+    }
+}
