@@ -473,9 +473,11 @@ fn assign_nums(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
 /// then written into the variable's own text when it alone holds it
 /// ([`RStr::set`]); a text another value shares is left alone and replaced.
 fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
+    // (A native's type is not known here: only the string natives `natives::text` takes
+    // become a `StrPart::Text`.)
     if !place.path.is_empty()
         || matches!(place.root, Root::Ref(_))
-        || cx.expr_ty(value) != Some(Ty::STRING)
+        || (cx.expr_ty(value) != Some(Ty::STRING) && !matches!(value.kind, ExprKind::Native(..)))
     {
         return None;
     }
