@@ -12,8 +12,9 @@
 //!   print the same result line.
 //!
 //! Run: `cargo bench --bench interp` (both parts, a release build), or
-//! `cargo bench --bench interp -- lang [NAME…] [--runs N] [--scale F]` for the suite alone
-//! (`--scale 0.1` for a quick look), `-- loop` for the loop alone.
+//! `cargo bench --bench interp -- lang [NAME…] [--runs N] [--scale F] [--rapidvc PATH]`
+//! for the suite alone (`--scale 0.1` for a quick look, `--rapidvc` to time another build
+//! of rapidvc, such as a copy of an earlier one), `-- loop` for the loop alone.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -329,11 +330,13 @@ mod lang {
         (file, n)
     }
 
-    /// `cargo bench --bench interp -- lang [NAME…] [--runs N] [--scale F]`.
+    /// `cargo bench --bench interp -- lang [NAME…] [--runs N] [--scale F] [--rapidvc PATH]`.
     pub fn run(args: &[String]) {
         let mut runs = 3usize;
         let mut scale = 1.0f64;
         let mut only: Vec<&str> = Vec::new();
+        // Another build of rapidvc (a copy of an earlier one, to compare in one run).
+        let mut rapidvc = env!("CARGO_BIN_EXE_rapidvc");
         let mut it = args.iter();
         while let Some(a) = it.next() {
             match a.as_str() {
@@ -345,10 +348,10 @@ mod lang {
                         .max(1)
                 }
                 "--scale" => scale = it.next().and_then(|v| v.parse().ok()).unwrap_or(scale),
+                "--rapidvc" => rapidvc = it.next().map(String::as_str).unwrap_or(rapidvc),
                 name => only.push(name),
             }
         }
-        let rapidvc = env!("CARGO_BIN_EXE_rapidvc");
         let python = find_tool(&["python3"]);
         let lua = find_tool(&["lua5.4", "lua"]);
         let dir = std::env::temp_dir().join(format!("rapidvc-lang-{}", std::process::id()));

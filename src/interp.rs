@@ -188,6 +188,9 @@ pub struct Interp {
     pending: Option<Unwind>,
     /// Buffers for building strings (kept for reuse).
     strbufs: Vec<String>,
+    /// Records a store replaced, kept to build the next records in (see
+    /// `compile::val`).
+    spare_records: Vec<Box<[Value]>>,
     /// Late-bound calls: the procedure name being looked up, and the arguments of each
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
@@ -282,6 +285,7 @@ impl Interp {
             ret: Value::Absent,
             pending: None,
             strbufs: Vec::new(),
+            spare_records: Vec::new(),
             late_name: String::new(),
             late_values: Vec::new(),
             late_args: rustc_hash::FxHashMap::default(),

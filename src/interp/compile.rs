@@ -395,21 +395,13 @@ impl<'p> Cx<'p> {
                 .map(|(vals, _)| {
                     vals.iter()
                         .filter_map(|e| match &e.kind {
-                            crate::ir::ExprKind::Str(s) => Some(s.clone()),
+                            crate::ir::ExprKind::Str(s) => Some(Box::<str>::from(&**s)),
                             _ => None,
                         })
                         .collect()
                 })
                 .collect();
-            return match subject.kind {
-                // Read where it is: compared without a copy.
-                crate::ir::ExprKind::Local(_)
-                | crate::ir::ExprKind::Global(_)
-                | crate::ir::ExprKind::Load(_) => {
-                    flow::Cases::StrAt(val::StrPart::new(self, subject), vals)
-                }
-                _ => flow::Cases::Str(val::value(self, subject), vals),
-            };
+            return flow::Cases::Str(val::StrPart::new(self, subject), vals);
         }
         flow::Cases::Any(
             subject.clone(),

@@ -1,12 +1,10 @@
 //! Expression evaluation, with unboxed fast paths for `num` and `bool` so that arithmetic on
 //! locals never allocates.
 
-use std::sync::Arc;
-
 use super::Interp;
 use super::errnum;
 use super::error::{ErrorKind, Exec};
-use super::value::{Array, MAX_STRING, Value, values_equal};
+use super::value::{Array, MAX_STRING, RStr, Value, values_equal};
 use crate::ir::{BinOp, Expr, ExprKind, ParamSlot, Program, UnOp};
 use crate::source::Span;
 
@@ -17,7 +15,7 @@ impl Interp {
             ExprKind::Num(x) => Ok(Value::Num(*x)),
             ExprKind::Dnum(x) => Ok(Value::Dnum(*x)),
             ExprKind::Bool(b) => Ok(Value::Bool(*b)),
-            ExprKind::Str(s) => Ok(Value::Str(s.clone())),
+            ExprKind::Str(s) => Ok(Value::Str(s.into())),
             ExprKind::Local(s) => {
                 let (bp, _) = self.bases();
                 match self.stack.get(bp + *s as usize) {
@@ -363,7 +361,7 @@ impl Interp {
     }
 
     /// Evaluate a `string` expression.
-    pub(crate) fn eval_str(&mut self, p: &Program, e: &Expr) -> Exec<Arc<str>> {
+    pub(crate) fn eval_str(&mut self, p: &Program, e: &Expr) -> Exec<RStr> {
         match self.eval(p, e)? {
             Value::Str(s) => Ok(s),
             other => Err(self.type_bug(e.span, "string", &other)),
@@ -525,7 +523,7 @@ impl Interp {
                 let mut s = String::with_capacity(x.len() + y.len());
                 s.push_str(&x);
                 s.push_str(&y);
-                Ok(Value::Str(Arc::from(s)))
+                Ok(Value::Str(RStr::from(s)))
             }
             Eq | Ne => {
                 let x = self.eval(p, a)?;

@@ -2,7 +2,9 @@
 //! `bool`, `string` (shared, immutable text), records and arrays.
 //!
 //! Scalars are stored inline, so `num`/`bool` arithmetic never allocates. Records and arrays
-//! are owned (deep copies on assignment, as RAPID's value semantics require).
+//! are owned (deep copies on assignment, as RAPID's value semantics require). A string is
+//! shared and copied on write ([`RStr`]): copying a string value shares its text, and a
+//! variable that alone holds its text is written in place (`s := s + c` appends).
 
 use std::sync::Arc;
 
@@ -21,7 +23,7 @@ pub enum Value {
     /// `bool`.
     Bool(bool),
     /// `string`.
-    Str(Arc<str>),
+    Str(RStr),
     /// A record: components in declaration order.
     Record(Box<[Value]>),
     /// An array.
@@ -30,16 +32,122 @@ pub enum Value {
     Absent,
 }
 
+/// The text of a `string` value: shared between the values that hold the same text, and
+/// written in place by the one value that holds it alone (its buffer is kept, so a variable
+/// that is built up or overwritten again and again allocates once).
+#[derive(Clone, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct RStr(Arc<String>);
+
+impl RStr {
+    /// The text to write, when this value alone holds it.
+    #[inline]
+    pub fn unique_mut(&mut self) -> Option<&mut String> {
+        Arc::get_mut(&mut self.0)
+    }
+
+    /// Make the text `s` (in place when this value alone holds its text).
+    #[inline]
+    pub fn set(&mut self, s: &str) {
+        match self.unique_mut() {
+            Some(t) => {
+                t.clear();
+                t.push_str(s);
+            }
+            None => *self = RStr::from(s),
+        }
+    }
+
+    /// The text.
+    #[inline(always)]
+    pub fn as_str(&self) -> &str {
+        self.0.as_str()
+    }
+}
+
+impl std::ops::Deref for RStr {
+    type Target = str;
+    #[inline(always)]
+    fn deref(&self) -> &str {
+        self.0.as_str()
+    }
+}
+
+impl AsRef<str> for RStr {
+    fn as_ref(&self) -> &str {
+        self
+    }
+}
+
+impl std::borrow::Borrow<str> for RStr {
+    fn borrow(&self) -> &str {
+        self
+    }
+}
+
+impl std::fmt::Debug for RStr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Debug::fmt(self.as_str(), f)
+    }
+}
+
+impl std::fmt::Display for RStr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self)
+    }
+}
+
+impl From<&str> for RStr {
+    fn from(s: &str) -> RStr {
+        RStr(Arc::new(s.to_owned()))
+    }
+}
+
+impl From<String> for RStr {
+    fn from(s: String) -> RStr {
+        RStr(Arc::new(s))
+    }
+}
+
+impl From<&String> for RStr {
+    fn from(s: &String) -> RStr {
+        RStr::from(s.as_str())
+    }
+}
+
+impl From<Arc<str>> for RStr {
+    fn from(s: Arc<str>) -> RStr {
+        RStr::from(&*s)
+    }
+}
+
+impl From<&Arc<str>> for RStr {
+    fn from(s: &Arc<str>) -> RStr {
+        RStr::from(&**s)
+    }
+}
+
+impl PartialEq<str> for RStr {
+    fn eq(&self, o: &str) -> bool {
+        self.as_str() == o
+    }
+}
+
+impl PartialEq<&str> for RStr {
+    fn eq(&self, o: &&str) -> bool {
+        self.as_str() == *o
+    }
+}
+
 /// The shared text of one ASCII character `b` (`b` < 128).
-fn ascii_char(b: u8) -> Arc<str> {
-    static CHARS: std::sync::LazyLock<Box<[Arc<str>]>> = std::sync::LazyLock::new(|| {
+fn ascii_char(b: u8) -> RStr {
+    static CHARS: std::sync::LazyLock<Box<[RStr]>> = std::sync::LazyLock::new(|| {
         (0u8..128)
-            .map(|b| Arc::from(char::from(b).to_string().as_str()))
+            .map(|b| RStr::from(char::from(b).to_string()))
             .collect()
     });
     match CHARS.get(b as usize) {
         Some(s) => s.clone(),
-        None => Arc::from(char::from(b).to_string().as_str()),
+        None => RStr::from(char::from(b).to_string()),
     }
 }
 
@@ -84,7 +192,7 @@ impl Value {
     pub fn str(s: &str) -> Value {
         match s.as_bytes() {
             [b] if b.is_ascii() => Value::Str(ascii_char(*b)),
-            _ => Value::Str(Arc::from(s)),
+            _ => Value::Str(RStr::from(s)),
         }
     }
 
@@ -238,7 +346,7 @@ fn default_scalar(types: &TypeTable, id: TypeId) -> Value {
         TypeKind::Num => Value::Num(0.0),
         TypeKind::Dnum => Value::Dnum(0.0),
         TypeKind::Bool => Value::Bool(false),
-        TypeKind::String => Value::Str(Arc::from("")),
+        TypeKind::String => Value::Str(RStr::default()),
         TypeKind::Switch => Value::Absent,
         TypeKind::Record { fields, .. } => Value::Record(
             fields
@@ -328,6 +436,23 @@ mod tests {
         let mut shorter = Value::Record(Box::new([Value::Num(1.0)]));
         shorter.reset_from(&template);
         assert_eq!(shorter, template);
+    }
+
+    #[test]
+    fn a_shared_text_is_copied_before_it_is_written() {
+        let mut a = RStr::from("ab");
+        a.set("abc");
+        assert_eq!(a, "abc");
+        let b = a.clone();
+        a.set("x");
+        assert_eq!(b, "abc", "the copy keeps its text");
+        assert_eq!(a, "x");
+        assert!(a.unique_mut().is_some(), "a new text is held alone");
+        let mut c = b.clone();
+        assert!(
+            c.unique_mut().is_none(),
+            "a shared text is not written in place"
+        );
     }
 
     #[test]

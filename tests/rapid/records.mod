@@ -104,4 +104,22 @@ MODULE records
     q := NOrient(q);
     Assert q.q1 = 1;
   ENDPROC
+  ! Records are copied on assignment, also when a variable is given a new value of
+  ! numbers in place.
+  PROC test_record_written_in_place_leaves_copies_alone()
+    VAR pos a;
+    VAR pos b;
+    VAR orient q;
+    a := [1, 2, 3];
+    b := a;
+    a := [4, 5, 6];
+    Assert b.x = 1 AND b.y = 2 AND b.z = 3 \Msg:="a copy taken before";
+    Assert a.x = 4 AND a.y = 5 AND a.z = 6;
+    a := [a.z, a.x, a.y];
+    Assert a.x = 6 AND a.y = 4 AND a.z = 5 \Msg:="every component read before any is written";
+    b.x := 10;
+    Assert a.x = 6;
+    q := [1, 0, 0, 0];
+    Assert q.q1 = 1 AND q.q4 = 0;
+  ENDPROC
 ENDMODULE

@@ -76,4 +76,92 @@ MODULE strings
     Assert ByteToStr(255 \Hex) = "FF";
     Assert StrToByte("1010" \Bin) = 10;
   ENDPROC
+  ! A string variable is written in place when it alone holds its text: a copy taken
+  ! before must keep the old text, whatever way the variable is written next.
+  VAR string shared_g := "g";
+  PERS string shared_p := "p";
+  VAR string shared_a{2};
+
+  PROC test_copies_keep_their_text()
+    VAR string s := "ab";
+    VAR string t;
+    VAR string u;
+    t := s;
+    s := s + "c";
+    Assert t = "ab" \Msg:="a copy taken before an append";
+    Assert s = "abc";
+    u := s;
+    s := "x";
+    Assert u = "abc" \Msg:="a copy taken before a constant is written";
+    s := s + s + NumToStr(12, 0) + StrPart(u, 2, 2);
+    Assert s = "xx12bc";
+    u := s;
+    s := StrPart(s, 3, 1);
+    Assert u = "xx12bc" \Msg:="a copy taken before StrPart is written";
+    Assert s = "1";
+    u := s;
+    s := NumToStr(7.5, 1);
+    Assert u = "1" \Msg:="a copy taken before NumToStr is written";
+    Assert s = "7.5";
+  ENDPROC
+
+  PROC test_copies_in_globals_arrays_and_arguments_keep_their_text()
+    VAR string s := "a";
+    shared_a{1} := s;
+    shared_g := s;
+    s := s + "b";
+    Assert shared_a{1} = "a";
+    Assert shared_g = "a";
+    shared_a{2} := shared_g;
+    shared_g := shared_g + "z";
+    Assert shared_a{2} = "a";
+    Assert shared_g = "az";
+    shared_p := "p";
+    s := shared_p;
+    shared_p := shared_p + "q";
+    Assert s = "p" \Msg:="a PERS written in place";
+    Assert shared_p = "pq";
+    Assert keeps_argument(s) = "p!";
+    Assert s = "p" \Msg:="an IN argument is a copy";
+  ENDPROC
+
+  FUNC string keeps_argument(string x)
+    VAR string y;
+    y := x;
+    y := y + "!";
+    RETURN y;
+  ENDFUNC
+
+  PROC append_through(INOUT string x)
+    x := x + "!";
+  ENDPROC
+
+  PROC test_inout_string_is_written_through()
+    VAR string s := "go";
+    VAR string t;
+    t := s;
+    append_through s;
+    Assert s = "go!" \Msg:="INOUT writes the caller's variable";
+    Assert t = "go" \Msg:="a copy taken before the call";
+    append_through shared_g;
+    Assert StrPart(shared_g, StrLen(shared_g), 1) = "!";
+  ENDPROC
+
+  PROC test_string_test_reads_in_place()
+    VAR string w := "b";
+    VAR num hit := 0;
+    TEST w + "c"
+    CASE "bc":
+      hit := 1;
+    DEFAULT:
+      hit := 2;
+    ENDTEST
+    Assert hit = 1;
+    w := "";
+    TEST w
+    CASE "":
+      hit := 3;
+    ENDTEST
+    Assert hit = 3;
+  ENDPROC
 ENDMODULE

@@ -1,13 +1,10 @@
 //! Running compiled blocks, FOR and TEST on the skeleton they share with the tree-walking
 //! engine (`Interp::run_block`, `Interp::for_loop`, `Interp::test_case` in `stmt.rs`).
 
-use std::sync::Arc;
-
-use super::val::{StrPart, ValFn};
+use super::val::StrPart;
 use super::{CBlock, Code, NumFn};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
-use crate::interp::value::{Value, values_equal};
 use crate::ir::Expr;
 use crate::source::Span;
 
@@ -77,12 +74,10 @@ pub(crate) enum Cases {
     /// A `num` subject with integer constant case values in a small range: the CASE of
     /// `lo + i` at `i` ([`NO_CASE`] for none).
     Table(SpannedNum, i32, Box<[u32]>),
-    /// A string subject read where it is, with constant case strings.
-    StrAt(StrPart, Box<[Box<[Arc<str>]>]>),
     /// A `num` subject with `num` case values, compared as numbers.
     Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
-    /// A string subject with constant case strings.
-    Str(ValFn, Box<[Box<[Arc<str>]>]>),
+    /// A string subject (read in place) with constant case strings.
+    Str(StrPart, Box<[Box<[Box<str>]>]>),
     /// Anything else, as lowered (structural equality).
     Any(Expr, Box<[Box<[Expr]>]>),
 }
@@ -145,9 +140,6 @@ impl Interp {
                     _ => None,
                 }
             }
-            Cases::StrAt(subject, cases) => subject.with(self, c, |s| {
-                cases.iter().position(|vals| vals.iter().any(|v| &**v == s))
-            })?,
             Cases::Num(subject, cases) => {
                 let x = self.cnum(c, subject)?;
                 let mut hit = None;
@@ -161,13 +153,9 @@ impl Interp {
                 }
                 hit
             }
-            Cases::Str(subject, cases) => match subject(self, c)? {
-                Value::Str(s) => cases.iter().position(|vals| vals.contains(&s)),
-                other => cases.iter().position(|vals| {
-                    vals.iter()
-                        .any(|v| values_equal(&other, &Value::Str(v.clone())))
-                }),
-            },
+            Cases::Str(subject, cases) => subject.with(self, c, |s| {
+                cases.iter().position(|vals| vals.iter().any(|v| **v == *s))
+            })?,
             Cases::Any(subject, cases) => {
                 let v = self.eval(p, subject)?;
                 self.test_case(p, &v, cases.iter().map(|vals| &vals[..]))?

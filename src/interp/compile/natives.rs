@@ -5,7 +5,7 @@
 //! the natives in `builtins/` (what the differential test holds them to).
 
 use super::num::num;
-use super::val::{StrPart, ValFn};
+use super::val::{StrPart, TextFn, ValFn};
 use super::{Code, Cx, NumFn};
 use crate::interp::Interp;
 use crate::interp::errnum;
@@ -90,11 +90,17 @@ pub(crate) fn math(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Num
 /// A string function compiled at its call site, if `n` is one of those and standard.
 pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<ValFn> {
     let name = cx.standard_native(n)?;
-    let arg = |k: usize| match args.get(k) {
-        Some(Arg::Value(e)) => Some(e),
-        _ => None,
-    };
-    let nums = |es: &[&Expr]| es.iter().all(|e| cx.is_num(e));
+    if let Some(f) = text(cx, n, args, span) {
+        // Built in a scratch buffer: one allocation for the value, none for a text of
+        // one ASCII character (see `Value::str`).
+        return Some(Box::new(move |it, c| {
+            let mut buf = it.strbufs.pop().unwrap_or_default();
+            buf.clear();
+            let r = f(it, c, &mut buf).map(|()| Value::str(&buf));
+            it.strbufs.push(buf);
+            r
+        }));
+    }
     match name {
         "StrLen" => {
             let f = str_len(cx, n, args)?;
@@ -107,34 +113,12 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             }))
         }
         "StrPart" => {
-            let (s, pos, len) = (arg(0)?, arg(1)?, arg(2)?);
-            if args.len() != 3 || cx.expr_ty(s) != Some(Ty::STRING) || !nums(&[pos, len]) {
-                return None;
-            }
-            // A string read that cannot fail, with numbers that have no side effects: the
-            // numbers may go first and the string be read in place after them.
-            let in_place = cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len);
+            // The string is read first, into a scratch buffer (the other arguments may
+            // change it).
+            let (s, pos, len) = str_part_args(cx, args)?;
             let s = StrPart::new(cx, s);
             let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
-            if in_place {
-                return Some(Box::new(move |it, c| {
-                    let (p, l) = (it.num_arg(c, &pos)?, it.num_arg(c, &len)?);
-                    let (p, l) = (it.int_arg(p, "ChPos", span)?, it.int_arg(l, "Len", span)?);
-                    match s.with(it, c, |t| part(t, p, l))? {
-                        Ok(v) => Ok(v),
-                        Err(e) => Err(it.rt_error(e, span)),
-                    }
-                }));
-            }
             Some(Box::new(move |it, c| it.str_part(c, &s, &pos, &len, span)))
-        }
-        "NumToStr" => {
-            let (x, dec) = (arg(0)?, arg(1)?);
-            if args.len() != 3 || !matches!(args[2], Arg::Absent) || !nums(&[x, dec]) {
-                return None;
-            }
-            let (x, dec) = ((num(cx, x), x.span), (num(cx, dec), dec.span));
-            Some(Box::new(move |it, c| it.num_to_str(c, &x, &dec, span)))
         }
         _ => {
             let f = math(cx, n, args, span)?;
@@ -149,23 +133,103 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
     }
 }
 
-/// `StrPart(text, p, l)` with integer arguments: a slice of ASCII text, else the runtime
-/// library's walk over characters (and its errors).
-fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
-    if text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64 {
-        let from = (p - 1) as usize;
-        return Ok(Value::str(&text[from..from + l as usize]));
+/// Argument `k` of a native call, when it is a value.
+fn value_arg(args: &[Arg], k: usize) -> Option<&Expr> {
+    match args.get(k) {
+        Some(Arg::Value(e)) => Some(e),
+        _ => None,
     }
-    crate::functions::string::str_part(text, p, l).map(|out| Value::Str(out.into()))
+}
+
+/// The string, position and length of a `StrPart` call, when they are known to be a
+/// string and two `num`s.
+fn str_part_args<'a>(cx: &Cx, args: &'a [Arg]) -> Option<(&'a Expr, &'a Expr, &'a Expr)> {
+    let (s, pos, len) = (
+        value_arg(args, 0)?,
+        value_arg(args, 1)?,
+        value_arg(args, 2)?,
+    );
+    (args.len() == 3 && cx.expr_ty(s) == Some(Ty::STRING) && cx.is_num(pos) && cx.is_num(len))
+        .then_some((s, pos, len))
+}
+
+/// A standard `NumToStr` (without `\Exp`) or `StrPart` whose string is read in place,
+/// compiled to append its text to a buffer (no value built), if `n` is one of those.
+pub(crate) fn text(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<TextFn> {
+    match cx.standard_native(n)? {
+        "StrPart" => {
+            // A string read that cannot fail, with numbers that have no side effects: the
+            // numbers may go first and the string be read in place after them.
+            let (s, pos, len) = str_part_args(cx, args)?;
+            if !(cx.plain_read(s) && super::simple::pure(pos) && super::simple::pure(len)) {
+                return None;
+            }
+            let s = StrPart::new(cx, s);
+            let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
+            Some(Box::new(move |it, c, buf| {
+                let (p, l) = (it.num_arg(c, &pos)?, it.num_arg(c, &len)?);
+                let (p, l) = (it.int_arg(p, "ChPos", span)?, it.int_arg(l, "Len", span)?);
+                match s.with(it, c, |t| part_into(t, p, l, buf))? {
+                    Ok(()) => Ok(()),
+                    Err(e) => Err(it.rt_error(e, span)),
+                }
+            }))
+        }
+        "NumToStr" => {
+            let (x, dec) = (value_arg(args, 0)?, value_arg(args, 1)?);
+            if args.len() != 3
+                || !matches!(args[2], Arg::Absent)
+                || !cx.is_num(x)
+                || !cx.is_num(dec)
+            {
+                return None;
+            }
+            let (x, dec) = ((num(cx, x), x.span), (num(cx, dec), dec.span));
+            Some(Box::new(move |it, c, buf| {
+                let (xv, d) = (it.num_arg(c, &x)?, it.num_arg(c, &dec)?);
+                let d = it.int_arg(d, "Dec", span)?.clamp(-1, 99) as i32;
+                let mut digits = [0u8; 12];
+                match whole_digits(xv, d, &mut digits) {
+                    Some(t) => buf.push_str(t),
+                    None => buf.push_str(&it.num_to_str(xv, d, span)?),
+                }
+                Ok(())
+            }))
+        }
+        _ => None,
+    }
+}
+
+/// `StrPart(text, p, l)` of ASCII text within its bounds: a slice (anything else goes to the
+/// runtime library's walk over characters, and its errors).
+fn ascii_part(text: &str, p: i64, l: i64) -> Option<&str> {
+    (text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64)
+        .then(|| &text[(p - 1) as usize..(p - 1 + l) as usize])
+}
+
+/// `StrPart(text, p, l)` with integer arguments.
+fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
+    match ascii_part(text, p, l) {
+        Some(t) => Ok(Value::str(t)),
+        None => crate::functions::string::str_part(text, p, l).map(|out| Value::Str(out.into())),
+    }
+}
+
+/// [`part`] appended to `buf`.
+fn part_into(text: &str, p: i64, l: i64, buf: &mut String) -> crate::functions::RtResult<()> {
+    match ascii_part(text, p, l) {
+        Some(t) => buf.push_str(t),
+        None => buf.push_str(&crate::functions::string::str_part(text, p, l)?),
+    }
+    Ok(())
 }
 
 /// `NumToStr(x, 0)` of an integer below 2^24 in magnitude (the text `int_to_str` writes),
-/// written on the stack: one allocation for the value, none for a single digit.
-fn whole_text(x: f32) -> Option<Value> {
-    if x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
+/// written into `buf` (`dec` must be 0).
+fn whole_digits(x: f32, dec: i32, buf: &mut [u8; 12]) -> Option<&str> {
+    if dec != 0 || x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
         return None;
     }
-    let mut buf = [0u8; 12];
     let mut k = buf.len();
     let mut n = (x as i32).unsigned_abs();
     loop {
@@ -180,7 +244,7 @@ fn whole_text(x: f32) -> Option<Value> {
         k -= 1;
         buf[k] = b'-';
     }
-    std::str::from_utf8(&buf[k..]).ok().map(Value::str)
+    std::str::from_utf8(&buf[k..]).ok()
 }
 
 impl Interp {
@@ -231,22 +295,11 @@ impl Interp {
         r
     }
 
-    fn num_to_str(
-        &mut self,
-        c: &Code,
-        x: &(NumFn, Span),
-        dec: &(NumFn, Span),
-        span: Span,
-    ) -> Exec<Value> {
-        let (x, d) = (self.num_arg(c, x)?, self.num_arg(c, dec)?);
-        let d = self.int_arg(d, "Dec", span)?.clamp(-1, 99) as i32;
-        if d == 0
-            && let Some(v) = whole_text(x)
-        {
-            return Ok(v);
-        }
+    /// The text of `NumToStr(x, d)` of a number no faster rule wrote (`d` clamped).
+    #[inline(never)]
+    fn num_to_str(&mut self, x: f32, d: i32, span: Span) -> Exec<String> {
         if let Some(s) = crate::interp::builtins::int_to_str(x, d) {
-            return Ok(Value::Str(s.into()));
+            return Ok(s);
         }
         let s = crate::functions::format::num_to_str(x, d, false)
             .map_err(|e| self.rt_error(e, span))?;
@@ -261,14 +314,17 @@ impl Interp {
                 ),
             ));
         }
-        Ok(Value::Str(s.into()))
+        Ok(s)
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::whole_text;
-    use crate::interp::value::Value;
+    use super::whole_digits;
+
+    fn whole_text(x: f32) -> Option<String> {
+        whole_digits(x, 0, &mut [0u8; 12]).map(String::from)
+    }
 
     /// The stack-written text of a whole number is the one `NumToStr(x, 0)` writes.
     #[test]
@@ -288,10 +344,15 @@ mod tests {
             -16_777_215.0,
         ] {
             let want = crate::interp::builtins::int_to_str(x, 0).expect("a whole number");
-            assert_eq!(whole_text(x), Some(Value::str(&want)), "{x}");
+            assert_eq!(whole_text(x), Some(want), "{x}");
         }
         assert_eq!(whole_text(0.5), None);
         assert_eq!(whole_text(16_777_216.0), None);
         assert_eq!(whole_text(f32::NAN), None);
+        assert_eq!(
+            whole_digits(1.0, 1, &mut [0u8; 12]),
+            None,
+            "decimals go the general way"
+        );
     }
 }

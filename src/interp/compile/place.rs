@@ -285,17 +285,22 @@ impl CPlace {
                 }
             }
             if !same_dims(cur, &v) {
-                return Ok(false);
+                return Ok(None);
             }
-            match (cur, v) {
-                (Value::Num(old), Value::Num(x)) => *old = x,
-                (cur, v) => *cur = v,
-            }
-            Ok(true)
+            Ok(Some(match (cur, v) {
+                (Value::Num(old), Value::Num(x)) => {
+                    *old = x;
+                    Value::Absent
+                }
+                (cur, v) => std::mem::replace(cur, v),
+            }))
         })();
         match r {
-            Ok(true) => Ok(()),
-            Ok(false) => Err(it.dims_error(self.ir.span)),
+            Ok(Some(old)) => {
+                it.recycle(old);
+                Ok(())
+            }
+            Ok(None) => Err(it.dims_error(self.ir.span)),
             Err(e) => Err(it.walk_err(e, self.ir.span)),
         }
     }

@@ -2,9 +2,9 @@
 //! string concatenation written into one buffer (the operands read in place, one
 //! allocation for the result), places read through their compiled path; anything else on
 //! the tree-walking engine's evaluator. Also the statements that store a value
-//! (`place := value`) and string comparisons that read their operands in place.
-
-use std::sync::Arc;
+//! (`place := value`) and string comparisons that read their operands in place. A string
+//! computed into a string variable is written into the variable's own text when it alone
+//! holds it (no allocation once the variable has its buffer).
 
 use super::num::num;
 use super::place::CPlace;
@@ -13,7 +13,7 @@ use crate::interp::Interp;
 use crate::interp::errnum;
 use crate::interp::error::{Exec, Unwind};
 use crate::interp::place::same_dims;
-use crate::interp::value::{MAX_STRING, Value};
+use crate::interp::value::{MAX_STRING, RStr, Value};
 use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Root, Ty};
 use crate::source::Span;
 
@@ -25,7 +25,7 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
     let span = e.span;
     match &e.kind {
         ExprKind::Str(s) => {
-            let s = s.clone();
+            let s = RStr::from(s);
             Box::new(move |_, _| Ok(Value::Str(s.clone())))
         }
         ExprKind::Binary(BinOp::Concat, ..) => {
@@ -58,14 +58,41 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
                 Box::new(move |it, c| it.cnative(c, &call))
             }
         },
+        ExprKind::Record(es) if es.iter().all(|e| cx.is_num(e)) => {
+            let es: Box<[(super::NumFn, Span)]> = es.iter().map(|e| (num(cx, e), e.span)).collect();
+            Box::new(move |it, c| {
+                let mut out = it.spare_record(es.len());
+                for ((f, span), v) in es.iter().zip(out.iter_mut()) {
+                    let x = f(it, c);
+                    if x.is_nan() {
+                        it.recycle(Value::Record(out));
+                        return Err(it.take_pending(*span));
+                    }
+                    match v {
+                        Value::Num(old) => *old = x,
+                        v => *v = Value::Num(x),
+                    }
+                }
+                Ok(Value::Record(out))
+            })
+        }
         ExprKind::Record(es) => {
             let es: Box<[ValFn]> = es.iter().map(|e| value(cx, e)).collect();
             Box::new(move |it, c| {
-                let mut out = Vec::with_capacity(es.len());
-                for f in es.iter() {
-                    out.push(f(it, c)?);
+                let mut out = it.spare_record(es.len());
+                for (f, v) in es.iter().zip(out.iter_mut()) {
+                    match f(it, c) {
+                        Ok(x) => {
+                            let old = std::mem::replace(v, x);
+                            it.recycle(old);
+                        }
+                        Err(u) => {
+                            it.recycle(Value::Record(out));
+                            return Err(u);
+                        }
+                    }
                 }
-                Ok(Value::Record(out.into_boxed_slice()))
+                Ok(Value::Record(out))
             })
         }
         ExprKind::Field(base, i) => {
@@ -99,16 +126,21 @@ pub(crate) fn value(cx: &Cx, e: &Expr) -> ValFn {
     }
 }
 
+/// A compiled string expression that appends its text to a buffer.
+pub(crate) type TextFn = Box<dyn Fn(&mut Interp, &Code, &mut String) -> Exec<()> + Send + Sync>;
+
 /// A string operand, read in place where it can be.
 pub(crate) enum StrPart {
     /// A constant.
-    Lit(Arc<str>),
+    Lit(RStr),
     /// A local slot (an absent optional parameter fails).
     Local(u32, Span),
     /// A global.
     Global(u32, Span),
     /// Any other place.
     Place(CPlace, Span),
+    /// A string computed into a buffer (a standard `NumToStr`, `StrPart`).
+    Text(TextFn),
     /// A computed string.
     Dyn(ValFn, Span),
 }
@@ -116,11 +148,24 @@ pub(crate) enum StrPart {
 impl StrPart {
     pub(crate) fn new(cx: &Cx, e: &Expr) -> StrPart {
         match &e.kind {
-            ExprKind::Str(s) => StrPart::Lit(s.clone()),
+            ExprKind::Str(s) => StrPart::Lit(RStr::from(s)),
             ExprKind::Local(s) => StrPart::Local(*s, e.span),
             ExprKind::Global(g) => StrPart::Global(*g, e.span),
             ExprKind::Load(pl) => StrPart::Place(CPlace::new(cx, pl), e.span),
+            ExprKind::Native(n, args) => match super::natives::text(cx, *n, args, e.span) {
+                Some(f) => StrPart::Text(f),
+                None => StrPart::Dyn(value(cx, e), e.span),
+            },
             _ => StrPart::Dyn(value(cx, e), e.span),
+        }
+    }
+
+    /// Append the text to `buf`.
+    #[inline(always)]
+    pub(crate) fn append(&self, it: &mut Interp, c: &Code, buf: &mut String) -> Exec<()> {
+        match self {
+            StrPart::Text(f) => f(it, c, buf),
+            _ => self.with(it, c, |s| buf.push_str(s)),
         }
     }
 
@@ -154,6 +199,13 @@ impl StrPart {
                     Err(v) => Err(bad(it, &v, span)),
                 }
             }
+            StrPart::Text(g) => {
+                let mut buf = it.strbufs.pop().unwrap_or_default();
+                buf.clear();
+                let r = g(it, c, &mut buf).map(|()| f(&buf));
+                it.strbufs.push(buf);
+                r
+            }
             StrPart::Dyn(g, span) => match g(it, c)? {
                 Value::Str(t) => Ok(f(&t)),
                 v => Err(bad(it, &v, *span)),
@@ -183,21 +235,45 @@ fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
     parts.into()
 }
 
+/// Most records kept for reuse ([`Interp::spare_record`]).
+const SPARE_RECORDS: usize = 16;
+
 impl Interp {
+    /// A record of `n` components to overwrite every component of: one a store replaced
+    /// (so building a record where one was just replaced does not allocate), else a new one.
+    #[inline]
+    pub(crate) fn spare_record(&mut self, n: usize) -> Box<[Value]> {
+        match self.spare_records.iter().rposition(|r| r.len() == n) {
+            Some(k) => self.spare_records.swap_remove(k),
+            None => vec![Value::Num(0.0); n].into_boxed_slice(),
+        }
+    }
+
+    /// Keep a replaced value for [`Interp::spare_record`] if it is a record (anything else
+    /// is dropped).
+    #[inline]
+    pub(crate) fn recycle(&mut self, v: Value) {
+        if let Value::Record(r) = v
+            && self.spare_records.len() < SPARE_RECORDS
+        {
+            self.spare_records.push(r);
+        }
+    }
+
     /// `a + b + …` for strings: each operand appended in order, the length checked after
     /// each `+` as the tree-walking engine checks it.
     fn concat(&mut self, c: &Code, parts: &Parts) -> Exec<Value> {
         let mut buf = self.strbufs.pop().unwrap_or_default();
         buf.clear();
         let r = self.concat_into(c, parts, &mut buf);
-        let v = r.map(|()| Value::Str(Arc::from(buf.as_str())));
+        let v = r.map(|()| Value::Str(RStr::from(buf.as_str())));
         self.strbufs.push(buf);
         v
     }
 
     fn concat_into(&mut self, c: &Code, parts: &Parts, buf: &mut String) -> Exec<()> {
         for (k, (part, span)) in parts.iter().enumerate() {
-            part.with(self, c, |s| buf.push_str(s))?;
+            part.append(self, c, buf)?;
             // More than MAX_STRING bytes may still be few enough characters.
             if k > 0 && buf.len() > MAX_STRING {
                 let n = buf.chars().count();
@@ -222,6 +298,19 @@ pub(crate) fn str_eq(cx: &Cx, a: &Expr, b: &Expr, eq: bool) -> Option<super::Boo
         return None;
     }
     let (a, b) = (StrPart::new(cx, a), StrPart::new(cx, b));
+    // Against a constant, nothing needs to be copied.
+    if let StrPart::Lit(k) = &b {
+        let k = k.clone();
+        return Some(Box::new(
+            move |it, c| Ok(a.with(it, c, |s| s == &*k)? == eq),
+        ));
+    }
+    if let StrPart::Lit(k) = &a {
+        let k = k.clone();
+        return Some(Box::new(
+            move |it, c| Ok(b.with(it, c, |s| s == &*k)? == eq),
+        ));
+    }
     Some(Box::new(move |it, c| {
         let mut tmp = it.strbufs.pop().unwrap_or_default();
         tmp.clear();
@@ -259,7 +348,8 @@ impl VSink {
         };
         match slot {
             Some(slot) if same_dims(slot, &v) => {
-                *slot = v;
+                let old = std::mem::replace(slot, v);
+                it.recycle(old);
                 Ok(())
             }
             Some(_) => Err(it.dims_error(pl.span)),
@@ -316,6 +406,9 @@ pub(crate) fn assign(cx: &Cx, place: &Place, value: &Expr) -> StmtFn {
             }
         });
     }
+    if let Some(f) = assign_text(cx, place, value).or_else(|| assign_nums(cx, place, value)) {
+        return f;
+    }
     let v = self::value(cx, value);
     let sink = VSink::of(cx, place);
     Box::new(move |it, c| {
@@ -324,8 +417,141 @@ pub(crate) fn assign(cx: &Cx, place: &Place, value: &Expr) -> StmtFn {
     })
 }
 
-/// `RETURN value` in a FUNC.
+/// Most components of a record of numbers written in place.
+const MAX_NUMS: usize = 8;
+
+/// `p := [x, y, z]` for a record of `num` components (`pos`, `orient`, a user record) held
+/// by a whole local or global: every component computed first, in order, then written into
+/// the record the variable holds (no record built when it holds one of that length).
+fn assign_nums(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
+    let ExprKind::Record(es) = &value.kind else {
+        return None;
+    };
+    if !place.path.is_empty()
+        || matches!(place.root, Root::Ref(_))
+        || es.len() > MAX_NUMS
+        || !es.iter().all(|e| cx.is_num(e))
+    {
+        return None;
+    }
+    let fs: Box<[(super::NumFn, Span)]> = es.iter().map(|e| (num(cx, e), e.span)).collect();
+    let sink = VSink::of(cx, place);
+    Some(Box::new(move |it, c| {
+        let mut xs = [0f32; MAX_NUMS];
+        for ((f, span), x) in fs.iter().zip(xs.iter_mut()) {
+            *x = f(it, c);
+            if x.is_nan() {
+                return Err(it.take_pending(*span));
+            }
+        }
+        let xs = &xs[..fs.len()];
+        let slot = match &sink {
+            VSink::Local(s, _) => it.stack.get_mut(it.bp + *s as usize),
+            VSink::Global(g, _) => it.globals.get_mut(*g as usize),
+            VSink::Place(_) => None,
+        };
+        if let Some(Value::Record(r)) = slot
+            && r.len() == xs.len()
+            && r.iter().all(|v| matches!(v, Value::Num(_)))
+        {
+            for (v, x) in r.iter_mut().zip(xs) {
+                *v = Value::Num(*x);
+            }
+            return Ok(());
+        }
+        let mut out = it.spare_record(xs.len());
+        for (v, x) in out.iter_mut().zip(xs) {
+            *v = Value::Num(*x);
+        }
+        sink.put(it, c, Value::Record(out))
+    }))
+}
+
+/// `s := text` for a string held by a whole local or global, when the text is computed
+/// (a constant, a concatenation, a standard `NumToStr` or `StrPart`): the text is built in
+/// a scratch buffer (everything evaluated before anything is stored, as for any value),
+/// then written into the variable's own text when it alone holds it
+/// ([`RStr::set`]); a text another value shares is left alone and replaced.
+fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
+    // (A native's type is not known here: only the string natives `natives::text` takes
+    // become a `StrPart::Text`.)
+    if !place.path.is_empty()
+        || matches!(place.root, Root::Ref(_))
+        || (cx.expr_ty(value) != Some(Ty::STRING) && !matches!(value.kind, ExprKind::Native(..)))
+    {
+        return None;
+    }
+    enum Src {
+        Concat(Parts),
+        Part(StrPart),
+    }
+    let src = match &value.kind {
+        ExprKind::Binary(BinOp::Concat, ..) => Src::Concat(concat_parts(cx, value)),
+        ExprKind::Str(_) | ExprKind::Native(..) => match StrPart::new(cx, value) {
+            p @ (StrPart::Lit(_) | StrPart::Text(_)) => Src::Part(p),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    let sink = VSink::of(cx, place);
+    Some(Box::new(move |it, c| {
+        let mut buf = it.strbufs.pop().unwrap_or_default();
+        buf.clear();
+        let r = match &src {
+            Src::Concat(parts) => it.concat_into(c, parts, &mut buf),
+            Src::Part(p) => p.append(it, c, &mut buf),
+        };
+        let r = r.and_then(|()| {
+            let slot = match &sink {
+                VSink::Local(s, _) => it.stack.get_mut(it.bp + *s as usize),
+                VSink::Global(g, _) => it.globals.get_mut(*g as usize),
+                VSink::Place(_) => None,
+            };
+            match slot {
+                Some(Value::Str(t)) => {
+                    t.set(&buf);
+                    Ok(())
+                }
+                _ => sink.put(it, c, Value::Str(RStr::from(buf.as_str()))),
+            }
+        });
+        it.strbufs.push(buf);
+        r
+    }))
+}
+
+/// `RETURN value` in a FUNC. A record held by routine data or a parameter is copied into a
+/// spare record ([`Interp::spare_record`]).
 pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
+    if let ExprKind::Local(s) = value.kind
+        && !cx.is_num(value)
+    {
+        let (s, span) = (s as usize, value.span);
+        return Box::new(move |it, _| {
+            let n = match it.stack.get(it.bp + s) {
+                Some(Value::Record(r)) => r.len(),
+                Some(Value::Absent) | None => {
+                    return Err(it.error(
+                        errnum::ERR_NOTPRES,
+                        span,
+                        "the optional parameter was not passed",
+                    ));
+                }
+                Some(v) => {
+                    it.ret = v.clone();
+                    return Err(Unwind::Return);
+                }
+            };
+            let mut out = it.spare_record(n);
+            if let Some(Value::Record(r)) = it.stack.get(it.bp + s) {
+                for (d, v) in out.iter_mut().zip(r.iter()) {
+                    d.reset_from(v);
+                }
+            }
+            it.ret = Value::Record(out);
+            Err(Unwind::Return)
+        });
+    }
     let v = self::value(cx, value);
     Box::new(move |it, c| {
         it.ret = v(it, c)?;
