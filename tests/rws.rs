@@ -708,6 +708,28 @@ fn the_speed_ratio_scales_the_moves_planned_after_it_and_those_under_way() {
 }
 
 #[test]
+fn ctrl_c_during_fly_by_moves_run_forever_voids_the_moves_on_their_way() {
+    // The moves the program had already sent when Ctrl-C came were planned from where the
+    // dropped moves would have ended: they must be dropped too, never run from where the
+    // robot stopped (that run was a 40° jump in one cycle, reported as a joint speed error).
+    for wait_ms in [700, 1300, 2100] {
+        let srv = Serve::start(
+            rapidvc_testkit::rapidvc!(),
+            "shuttle",
+            "tests/serve",
+            &["--entry", "shuttle"],
+        );
+        let mut c = login(&srv);
+        start_program(&mut c, "forever");
+        std::thread::sleep(Duration::from_millis(wait_ms));
+        let ended = srv.stop(Duration::from_secs(20));
+        assert_eq!(ended.code, Some(0), "{ended:?}");
+        assert!(!ended.stderr.contains("speed"), "{}", ended.stderr);
+        assert!(!ended.stderr.contains("event:"), "{}", ended.stderr);
+    }
+}
+
+#[test]
 fn ctrl_c_during_a_move_brakes_the_robot_and_ends_cleanly() {
     let srv = start_moves("sigint");
     let mut c = login(&srv);

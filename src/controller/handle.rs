@@ -462,7 +462,7 @@ impl ControllerHandle {
                 self.position.drop_pending();
             }
             Driver::RealTime(r) => {
-                let _ = r.control.send(Control::Stop);
+                let _ = r.control.send(Control::Stop { sent: r.submitted });
                 let _ = Self::settle(r, |p| !p.state.moving && p.state.pending == 0);
                 let joints = r.published().state.setpoint.joints;
                 r.planner.set_start(joints);

@@ -24,8 +24,10 @@ use super::period_stats::PeriodStats;
 /// Requests from the controller handle to the motion thread (rare: sizes do not matter).
 #[allow(clippy::large_enum_variant)]
 pub(super) enum Control {
-    /// Drop queued and active moves and brake to rest.
-    Stop,
+    /// Drop queued and active moves and brake to rest. `sent`: how many segments the handle
+    /// had sent when it asked; those still in the channel are void too (they were planned
+    /// from where the dropped moves would have ended, not from where the robot stops).
+    Stop { sent: u64 },
     /// Leave the halted state.
     Recover,
     /// Hand the robot to external guidance.
@@ -88,6 +90,8 @@ pub(super) struct RtLoop {
     pub events: SyncSender<MotionEvent>,
     pub shared: Arc<Shared>,
     pub hook: Option<Box<dyn CycleHook>>,
+    /// Segments up to this count (sent before the latest stop) are void when they arrive.
+    pub void_through: u64,
 }
 
 impl RtLoop {
@@ -171,8 +175,8 @@ impl RtLoop {
             match self.segments.try_recv() {
                 Ok(seg) => {
                     *accepted += 1;
-                    if self.exec.is_halted() {
-                        // Moves sent before the handle saw the error are void.
+                    if self.exec.is_halted() || *accepted <= self.void_through {
+                        // Moves sent before the handle saw the error, or before a stop, are void.
                         let _ = self.recycle.try_send(seg);
                     } else if let Err(seg) = self.exec.push(seg) {
                         let _ = self.recycle.try_send(seg);
@@ -183,7 +187,10 @@ impl RtLoop {
         }
         loop {
             match self.control.try_recv() {
-                Ok(Control::Stop) => self.exec.stop(),
+                Ok(Control::Stop { sent }) => {
+                    self.void_through = self.void_through.max(sent);
+                    self.exec.stop();
+                }
                 Ok(Control::Recover) => self.exec.recover(),
                 Ok(Control::StartExternal {
                     guidance,

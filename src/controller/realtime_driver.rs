@@ -99,6 +99,7 @@ impl RealTimeDriver {
             events: ev_tx,
             shared: Arc::clone(&shared),
             hook,
+            void_through: 0,
         };
         let rt = std::thread::Builder::new()
             .name("rapidvc-motion".into())
