@@ -208,23 +208,9 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
     shutdown.store(true, Ordering::Relaxed);
     server.stop();
     let _ = services.join();
-    if let Some(egm_host) = it.host_mut().egm()
-        && let Err(e) = egm_host.egm_program_stopped()
-    {
-        eprintln!("error: {e}");
-    }
-    if let Some(host) = it
-        .host_mut()
-        .as_any_mut()
-        .and_then(|x| x.downcast_mut::<ControllerHost>())
-    {
-        let egm_controller = host.take_egm();
-        match host.finish(false) {
-            Ok(summary) => run::print_summary(&summary),
-            Err(e) => {
-                eprintln!("error: {e}");
-                code = ExitCode::from(2);
-            }
+    if let Some((egm_controller, finished)) = finish_motion(&mut it) {
+        if !finished {
+            code = ExitCode::from(2);
         }
         if let Some(e) = egm_controller
             && let Err(msg) = egm_options::finish(e, &a.egm, egm_log_written)
@@ -310,6 +296,38 @@ fn serve_info(
         roots,
         signals: Arc::clone(signals),
     }
+}
+
+/// A task's program has ended at shutdown: EGM hears that the program stopped, the robot
+/// brakes and the motion controller finishes (its summary printed). `None` for a task
+/// without a motion controller; else its EGM controller and whether finishing went well.
+pub(super) fn finish_motion(
+    it: &mut Interp,
+) -> Option<(
+    Option<crate::controller::egm_controller::EgmController>,
+    bool,
+)> {
+    if let Some(egm_host) = it.host_mut().egm()
+        && let Err(e) = egm_host.egm_program_stopped()
+    {
+        eprintln!("error: {e}");
+    }
+    let host = it
+        .host_mut()
+        .as_any_mut()
+        .and_then(|x| x.downcast_mut::<ControllerHost>())?;
+    let egm = host.take_egm();
+    let finished = match host.finish(false) {
+        Ok(summary) => {
+            run::print_summary(&summary);
+            true
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    };
+    Some((egm, finished))
 }
 
 /// The first line on stdout: where RWS listens.

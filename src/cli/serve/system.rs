@@ -383,23 +383,10 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
                 }
             }
             let mut egm = None;
-            if let Some(egm_host) = it.host_mut().egm()
-                && let Err(e) = egm_host.egm_program_stopped()
-            {
-                eprintln!("error: {e}");
-            }
-            if let Some(host) = it
-                .host_mut()
-                .as_any_mut()
-                .and_then(|x| x.downcast_mut::<ControllerHost>())
-            {
-                egm = host.take_egm();
-                match host.finish(false) {
-                    Ok(summary) => run::print_summary(&summary),
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        code = ExitCode::from(2);
-                    }
+            if let Some((e, finished)) = super::finish_motion(&mut it) {
+                egm = e;
+                if !finished {
+                    code = ExitCode::from(2);
                 }
             }
             TaskEnd { code, egm }
