@@ -481,3 +481,94 @@ fn a_pers_of_a_module_loaded_at_run_time_is_shared_by_name() {
         ended.stderr
     );
 }
+
+#[test]
+fn the_other_tasks_run_while_the_motion_task_is_in_an_egm_run_or_a_triggered_move() {
+    // The motion task waits inside EGMRunJoint (built-in sensor) and inside a TriggL: the
+    // counter task's 0.1 s ticks go on meanwhile, at their times, the same every run.
+    const ROBOT: &str = r#"MODULE Robot
+VAR egmident egm1;
+VAR triggdata t1;
+VAR clock clk;
+CONST jointtarget home := [[0,0,0,0,30,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
+CONST egm_minmax win := [-0.2,0.2];
+PROC main()
+  VAR robtarget p;
+  ConfL \Off;
+  MoveAbsJ home, v1000, fine, tool0;
+  ClkStart clk;
+  EGMGetId egm1;
+  EGMSetupUC ROB_1, egm1, "default", "sensor" \Joint \CommTimeout:=5;
+  EGMActJoint egm1 \J1:=win \J2:=win \J3:=win \J4:=win \J5:=win \J6:=win \MaxSpeedDeviation:=40;
+  TPWrite "EGM run from " \Num:=ClkRead(clk);
+  EGMRunJoint egm1, EGM_STOP_HOLD \J1 \J2 \J3 \J4 \J5 \J6 \CondTime:=0.5 \RampInTime:=0.1;
+  TPWrite "EGM run ended at " \Num:=ClkRead(clk);
+  EGMReset egm1;
+  p := CRobT();
+  TriggIO t1, 10 \DOp:=DO1, 1;
+  TPWrite "TriggL from " \Num:=ClkRead(clk);
+  TriggL Offs(p, 0, 0, 100), v100, t1, fine, tool0;
+  TPWrite "TriggL ended at " \Num:=ClkRead(clk);
+ENDPROC
+ENDMODULE
+"#;
+    const COUNTER: &str = r#"MODULE Counter
+PROC main()
+  VAR clock c;
+  ClkStart c;
+  FOR i FROM 1 TO 40 DO
+    WaitTime 0.1;
+    TPWrite "tick " \Num:=ClkRead(c);
+  ENDFOR
+ENDPROC
+ENDMODULE
+"#;
+    let (dir, mut args) = system(
+        "baton",
+        &[
+            ("T_ROB1", MOTION, ROBOT),
+            ("T_CNT", "-Type \"NORMAL\"", COUNTER),
+        ],
+    );
+    std::fs::write(
+        dir.join("EIO.cfg"),
+        "EIO:CFG_1.0:6:0::\n#\nEIO_SIGNAL:\n      -Name \"DO1\" -SignalType \"DO\"\n",
+    )
+    .unwrap();
+    args.extend([
+        "--device".into(),
+        "sensor=builtin:joint:10,-5,20,0,40,30".into(),
+    ]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let first = run_in(&dir, &args);
+    let again = run_in(&dir, &args);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(first.code, Some(0), "{}\n{}", first.stdout, first.stderr);
+    assert_eq!(first.stdout, again.stdout, "deterministic");
+    let lines: Vec<&str> = first.stdout.lines().collect();
+    let at = |what: &str| {
+        lines
+            .iter()
+            .position(|l| l.contains(what))
+            .unwrap_or_else(|| panic!("no `{what}` in\n{}", first.stdout))
+    };
+    let ticks_between = |from: &str, to: &str| {
+        lines[at(from)..at(to)]
+            .iter()
+            .filter(|l| l.contains("[T_CNT] tick"))
+            .count()
+    };
+    // The EGM run lasts about 2 s and the TriggL 1 s of robot time.
+    let egm = ticks_between("EGM run from", "EGM run ended");
+    let trigg = ticks_between("TriggL from", "TriggL ended");
+    assert!(
+        egm >= 15,
+        "{egm} ticks during the EGM run:\n{}",
+        first.stdout
+    );
+    assert!(
+        trigg >= 8,
+        "{trigg} ticks during the TriggL:\n{}",
+        first.stdout
+    );
+}
