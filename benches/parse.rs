@@ -30,6 +30,13 @@ fn bench(c: &mut Criterion) {
             ParseOptions::single_thread(),
         ),
         (
+            "parse_and_check_4MB_one_thread_calls_unpacked",
+            ParseOptions {
+                pack_simple_calls: false,
+                ..ParseOptions::single_thread()
+            },
+        ),
+        (
             "parse_and_check_4MB_one_thread_unpacked",
             ParseOptions {
                 pack_literal_aggregates: false,
