@@ -137,13 +137,9 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
         Arc::clone(&shutdown),
         calendar,
     ));
-    let (forward, forwarded) = std::sync::mpsc::channel();
-    let services = match spawn_service_thread(endpoint, Arc::clone(&state), info, forward) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: cannot start the service thread: {e}");
-            return ExitCode::from(2);
-        }
+    let (services, forwarded) = match start_services(endpoint, &state, info) {
+        Ok(s) => s,
+        Err(code) => return code,
     };
     let server = match start_rws(&args, listener, handle) {
         Ok(s) => s,
@@ -328,6 +324,29 @@ pub(super) fn finish_motion(
         }
     };
     Some((egm, finished))
+}
+
+/// The service thread answering requests from the controller's state; the requests it
+/// forwards to the program side arrive on the receiver.
+pub(super) fn start_services(
+    endpoint: service::ServiceEndpoint,
+    state: &Arc<SystemState>,
+    info: ServeInfo,
+) -> Result<
+    (
+        std::thread::JoinHandle<()>,
+        std::sync::mpsc::Receiver<service::Request>,
+    ),
+    ExitCode,
+> {
+    let (forward, forwarded) = std::sync::mpsc::channel();
+    match spawn_service_thread(endpoint, Arc::clone(state), info, forward) {
+        Ok(t) => Ok((t, forwarded)),
+        Err(e) => {
+            eprintln!("error: cannot start the service thread: {e}");
+            Err(ExitCode::from(2))
+        }
+    }
 }
 
 /// The first line on stdout: where RWS listens.

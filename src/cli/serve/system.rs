@@ -31,8 +31,8 @@ use crate::controller::MonotonicClock;
 use crate::controller::service::{
     self, DipcMessage, Request, ServiceError, TaskExecState, TaskInfo, TaskType,
 };
+use crate::controller::system_state::SystemState;
 use crate::controller::system_state::program_side::{ProgramSide, run_program};
-use crate::controller::system_state::{SystemState, spawn_service_thread};
 use crate::controller::tasks::{
     DEFAULT_SLICE, EXTERNAL_SLOT_BASE, ExternalQueues, Scheduler, TaskedHost, run_tasks,
 };
@@ -264,13 +264,9 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         }));
     }
 
-    let (forward, forwarded) = std::sync::mpsc::channel();
-    let services = match spawn_service_thread(endpoint, Arc::clone(&state), info, forward) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: cannot start the service thread: {e}");
-            return ExitCode::from(2);
-        }
+    let (services, forwarded) = match super::start_services(endpoint, &state, info) {
+        Ok(s) => s,
+        Err(code) => return code,
     };
     let mut routes = Vec::new();
     let mut receivers = Vec::new();
