@@ -26,6 +26,7 @@ use rapidvc::robot::Robot;
 use rapidvc::signals::SignalTable;
 use rapidvc::time::RobotTime;
 use rapidvc::wire::udp::UdpTransport;
+use rapidvc_testkit::fixed_iters::{Runner, mark};
 
 fn feedback() -> RobotFeedback {
     let pose = Pose {
@@ -47,24 +48,22 @@ fn sensor_reply(pattern: &str, fb: &RobotFeedback) -> Vec<u8> {
         .unwrap()
 }
 
-fn codec(c: &mut Criterion) {
+fn codec(r: &mut Runner<Criterion>) {
     let fb = feedback();
     let mut msg = EgmRobot::default();
     let mut buf = Vec::with_capacity(1024);
-    c.bench_function("egm/encode EgmRobot (fill + encode)", |b| {
-        b.iter(|| {
-            fill_robot(&mut msg, 7, 28, black_box(&fb), &EncodeOptions::default());
-            buf.clear();
-            msg.encode(&mut buf).unwrap();
-            black_box(buf.len())
-        })
+    r.iter("egm/encode EgmRobot (fill + encode)", || {
+        fill_robot(&mut msg, 7, 28, black_box(&fb), &EncodeOptions::default());
+        buf.clear();
+        msg.encode(&mut buf).unwrap();
+        black_box(buf.len())
     });
     let robot_bytes = {
         fill_robot(&mut msg, 7, 28, &fb, &EncodeOptions::default());
         msg.encode_to_vec()
     };
-    c.bench_function("egm/decode EgmRobot (sensor side)", |b| {
-        b.iter(|| EgmRobot::decode(black_box(robot_bytes.as_slice())).unwrap())
+    r.iter("egm/decode EgmRobot (sensor side)", || {
+        EgmRobot::decode(black_box(robot_bytes.as_slice())).unwrap()
     });
     let limits = ReferenceLimits::default();
     for (name, pattern, mode) in [
@@ -73,61 +72,54 @@ fn codec(c: &mut Criterion) {
         ("pathcorr", "pathcorr:y=1,z=2", EgmMode::PathCorr),
     ] {
         let reply = sensor_reply(pattern, &fb);
-        c.bench_function(&format!("egm/decode+validate EgmSensor {name}"), |b| {
-            b.iter(|| {
-                decode_reference(
-                    black_box(&reply),
-                    mode,
-                    &Pose::IDENTITY,
-                    &limits,
-                    RobotTime::ZERO,
-                )
-                .unwrap()
-            })
+        r.iter(&format!("egm/decode+validate EgmSensor {name}"), || {
+            decode_reference(
+                black_box(&reply),
+                mode,
+                &Pose::IDENTITY,
+                &limits,
+                RobotTime::ZERO,
+            )
+            .unwrap()
         });
     }
 }
 
-fn session_and_sensor(c: &mut Criterion) {
+fn session_and_sensor(r: &mut Runner<Criterion>) {
     let fb = feedback();
     let remote = "127.0.0.1:6510".parse().unwrap();
     let mut session = EgmSession::new(EgmConfig::new(EgmMode::Joint, remote)).unwrap();
     session.start(RobotTime::ZERO);
     let mut now = RobotTime::ZERO;
     let mut buf = Vec::with_capacity(1024);
-    c.bench_function("egm/session poll_transmit_into (one cycle)", |b| {
-        b.iter(|| {
-            now += Duration::from_millis(4);
-            black_box(session.poll_transmit_into(now, &fb, &mut buf))
-        })
+    r.iter("egm/session poll_transmit_into (one cycle)", || {
+        now += Duration::from_millis(4);
+        black_box(session.poll_transmit_into(now, &fb, &mut buf))
     });
     let reply = sensor_reply("joint:1,2,3,4,5,6", &fb);
-    c.bench_function("egm/session handle_datagram + poll_reference", |b| {
-        b.iter(|| {
-            session.handle_datagram(now, remote, black_box(&reply));
-            black_box(session.poll_reference())
-        })
+    r.iter("egm/session handle_datagram + poll_reference", || {
+        session.handle_datagram(now, remote, black_box(&reply));
+        black_box(session.poll_reference())
     });
     let mut robot = EgmRobot::default();
     fill_robot(&mut robot, 1, 4, &fb, &EncodeOptions::default());
     let robot_bytes = robot.encode_to_vec();
     let mut sensor = BuiltinSensor::new(SensorConfig::new("circle".parse().unwrap())).unwrap();
-    c.bench_function("egm/builtin sensor handle_datagram (decode + reply)", |b| {
-        b.iter(|| {
+    r.iter(
+        "egm/builtin sensor handle_datagram (decode + reply)",
+        || {
             sensor
                 .handle_datagram(now.since_start(), black_box(&robot_bytes))
                 .unwrap()
-        })
-    });
+        },
+    );
     let params = ServoParams {
         cond_time: Duration::from_secs(1_000_000),
         ..ServoParams::default()
     };
     let mut servo = EgmServo::new(params, [0.0; 6]).unwrap();
     let input = ServoInput::position([10.0, -5.0, 20.0, 0.0, 40.0, 30.0]);
-    c.bench_function("egm/servo step", |b| {
-        b.iter(|| servo.step(black_box(&input)))
-    });
+    r.iter("egm/servo step", || servo.step(black_box(&input)));
 }
 
 /// Encoded sizes of representative messages.
@@ -169,7 +161,7 @@ fn sizes() {
 }
 
 /// Real-socket round trip: send an EgmRobot, the built-in sensor thread replies, read it.
-fn loopback(exchanges: u32) {
+fn loopback(exchanges: u64) {
     let sensor_socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     sensor_socket
         .set_read_timeout(Some(Duration::from_secs(2)))
@@ -198,8 +190,9 @@ fn loopback(exchanges: u32) {
     let mut buf = Vec::with_capacity(1024);
     let mut rtt = LatencyHistogram::new();
     let mut lost = 0u32;
+    mark();
     for k in 0..exchanges {
-        let now = RobotTime::from_duration(Duration::from_millis(4) * k);
+        let now = RobotTime::from_duration(Duration::from_millis(4 * k));
         fb.time = RobotTime::from_duration(origin.elapsed());
         assert!(session.poll_transmit_into(now, &fb, &mut buf));
         let sent = Instant::now();
@@ -213,6 +206,7 @@ fn loopback(exchanges: u32) {
             None => lost += 1,
         }
     }
+    mark();
     transport.send(&[]).unwrap();
     thread.join().unwrap();
     println!(
@@ -308,7 +302,7 @@ fn endless_driver(mode: EgmMode, pattern: Option<&str>, sample_ms: f64) -> (EgmD
     (driver, start)
 }
 
-fn driver(c: &mut Criterion) {
+fn driver(r: &mut Runner<Criterion>) {
     let cases = [
         (
             "egm/driver tick: joint, built-in sine (servo + EgmRobot + in-process reply)",
@@ -332,15 +326,13 @@ fn driver(c: &mut Criterion) {
     for (name, mode, pattern, rate) in cases {
         let (mut d, mut q) = endless_driver(mode, pattern, rate);
         let mut now = RobotTime::ZERO;
-        c.bench_function(name, |b| {
-            b.iter(|| {
-                now += Duration::from_millis(4);
-                let t = d.tick(black_box(now), &q);
-                q = t.joints_cmd;
-                while d.poll_event().is_some() {}
-                while d.pop_log().is_some() {}
-                black_box(t.joints_cmd)
-            })
+        r.iter(name, || {
+            now += Duration::from_millis(4);
+            let t = d.tick(black_box(now), &q);
+            q = t.joints_cmd;
+            while d.poll_event().is_some() {}
+            while d.pop_log().is_some() {}
+            black_box(t.joints_cmd)
         });
         assert!(!d.is_finished(), "{name}: {:?}", d.outcome());
     }
@@ -349,9 +341,15 @@ fn driver(c: &mut Criterion) {
 fn main() {
     let bench_mode = std::env::args().any(|a| a == "--bench");
     let mut c = Criterion::default().configure_from_args();
-    codec(&mut c);
-    session_and_sensor(&mut c);
-    driver(&mut c);
+    let mut r = Runner::new(&mut c);
+    codec(&mut r);
+    session_and_sensor(&mut r);
+    driver(&mut r);
+    if let Some(fixed) = r.fixed() {
+        // Both threads: the controller side and the built-in sensor thread that replies.
+        fixed.run("egm/loopback round trip (both sides)", loopback);
+        return;
+    }
     c.final_summary();
     sizes();
     loopback(if bench_mode { 5000 } else { 50 });

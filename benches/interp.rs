@@ -23,6 +23,7 @@ use std::time::Instant;
 
 use rapidvc::interp::{Interp, Output, VirtualHost};
 use rapidvc::program;
+use rapidvc_testkit::fixed_iters::Fixed;
 
 fn bench_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("benches")
@@ -120,6 +121,10 @@ fn memory_kb() -> (u64, u64) {
 fn main() {
     // `cargo test --benches` passes `--bench`-less arguments; only run when benchmarking.
     if std::env::args().any(|a| a == "--list") {
+        return;
+    }
+    if let Some(fixed) = Fixed::from_env() {
+        lang::fixed(&fixed);
         return;
     }
     let args: Vec<String> = std::env::args()
@@ -328,6 +333,36 @@ mod lang {
         let file = dir.join(format!("{}.mod", p.name));
         std::fs::write(&file, text).expect("write the RAPID program");
         (file, n)
+    }
+
+    /// Size of the programs in the fixed-iteration mode (a fraction of the suite's).
+    const FIXED_SCALE: f64 = 0.02;
+
+    /// The fixed-iteration mode (`rapidvc_testkit::fixed_iters`, for callgrind): every
+    /// program of the suite in this process at `FIXED_SCALE` of its size, named
+    /// `lang/NAME`. One iteration is one run: the interpreter made for the loaded program
+    /// (its routines compiled), `init` and `main`, on a `VirtualHost`; loading and checking
+    /// the program come before, outside the count.
+    pub fn fixed(fixed: &super::Fixed) {
+        let dir = std::env::temp_dir().join(format!("rapidvc-fixed-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let benches = super::bench_dir();
+        for p in SUITE {
+            let mut loaded = None;
+            fixed.iter(&format!("lang/{}", p.name), || {
+                let loaded = loaded.get_or_insert_with(|| {
+                    let src = benches.join(format!("{}.mod", p.stem));
+                    let (file, _) = rapid_source(p, &src, FIXED_SCALE, &dir);
+                    super::program::load(&[file], Some(&dir))
+                });
+                let prog = loaded.program.clone().expect("the program checks");
+                let mut it =
+                    super::Interp::new(prog, &loaded.registry, Box::new(super::VirtualHost::new()));
+                it.init().expect("init");
+                it.run("main").expect("the program runs");
+            });
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// `cargo bench --bench interp -- lang [NAME…] [--runs N] [--scale F] [--rapidvc PATH]`.

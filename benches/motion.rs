@@ -12,6 +12,7 @@ use rapidvc::robot::command::{
     SpeedOverride, ZoneData,
 };
 use rapidvc::robot::{ConfData, Pose, Robot, ToolData, WobjData, pose_to_pos_quat};
+use rapidvc_testkit::fixed_iters::{Runner, mark};
 
 const START: [f64; 6] = [0.0, 0.0, 0.0, 0.0, 35.0, 0.0];
 const DT: Duration = Duration::from_millis(4);
@@ -41,34 +42,34 @@ fn target(dy: f64, dz: f64) -> RobTarget {
 }
 
 fn motion(c: &mut Criterion) {
+    let mut r = Runner::new(c);
     // One cycle while a long joint move plays (planning excluded from the timing).
-    c.bench_function("tick", |b| {
-        b.iter_custom(|iters| {
-            let mut total = Duration::ZERO;
-            let mut left = iters;
-            while left > 0 {
-                let n = left.min(200_000);
-                let mut core = MotionCore::new(Robot::default(), CoreConfig::default(), START);
-                let mut cmd = MoveAbsJ {
-                    args: args(100.0),
-                    target: JointTarget {
-                        robax: [90.0, 20.0, -20.0, 90.0, 60.0, 90.0],
-                        extax: EXTAX_NONE,
-                    },
-                    no_eoffs: false,
-                };
-                cmd.args.speed_override =
-                    Some(SpeedOverride::T((n + 10) as f64 * DT.as_secs_f64()));
-                core.enqueue(MotionCommand::MoveAbsJ(cmd)).ok();
-                let start = Instant::now();
-                for k in 1..=n {
-                    black_box(core.tick(RobotTime::from_nanos(k * 4_000_000)));
-                }
-                total += start.elapsed();
-                left -= n;
+    r.iter_custom("tick", |iters| {
+        let mut total = Duration::ZERO;
+        let mut left = iters;
+        while left > 0 {
+            let n = left.min(200_000);
+            let mut core = MotionCore::new(Robot::default(), CoreConfig::default(), START);
+            let mut cmd = MoveAbsJ {
+                args: args(100.0),
+                target: JointTarget {
+                    robax: [90.0, 20.0, -20.0, 90.0, 60.0, 90.0],
+                    extax: EXTAX_NONE,
+                },
+                no_eoffs: false,
+            };
+            cmd.args.speed_override = Some(SpeedOverride::T((n + 10) as f64 * DT.as_secs_f64()));
+            core.enqueue(MotionCommand::MoveAbsJ(cmd)).ok();
+            let start = Instant::now();
+            mark();
+            for k in 1..=n {
+                black_box(core.tick(RobotTime::from_nanos(k * 4_000_000)));
             }
-            total
-        })
+            mark();
+            total += start.elapsed();
+            left -= n;
+        }
+        total
     });
 
     let movel = MotionCommand::MoveL(MoveL {
@@ -76,26 +77,24 @@ fn motion(c: &mut Criterion) {
         target: target(500.0, -100.0),
         conf_check: false,
     });
-    c.bench_function("plan_movel_510mm_v1000", |b| {
-        b.iter_batched(
-            || Planner::new(Robot::default(), DT, START),
-            |mut p| black_box(p.plan(&movel).is_ok()),
-            BatchSize::SmallInput,
-        )
-    });
+    r.iter_batched(
+        "plan_movel_510mm_v1000",
+        || Planner::new(Robot::default(), DT, START),
+        |mut p| black_box(p.plan(&movel).is_ok()),
+        BatchSize::SmallInput,
+    );
 
     let movej = MotionCommand::MoveJ(MoveJ {
         args: args(1000.0),
         target: target(500.0, -100.0),
         conf_check: false,
     });
-    c.bench_function("plan_movej_v1000", |b| {
-        b.iter_batched(
-            || Planner::new(Robot::default(), DT, START),
-            |mut p| black_box(p.plan(&movej).is_ok()),
-            BatchSize::SmallInput,
-        )
-    });
+    r.iter_batched(
+        "plan_movej_v1000",
+        || Planner::new(Robot::default(), DT, START),
+        |mut p| black_box(p.plan(&movej).is_ok()),
+        BatchSize::SmallInput,
+    );
 }
 
 criterion_group!(benches, motion);

@@ -16,6 +16,7 @@ use rapidvc::diag::Diagnostics;
 use rapidvc::parse::{self, ParseOptions};
 use rapidvc::source::SourceId;
 
+use rapidvc_testkit::fixed_iters::Runner;
 use rapidvc_testkit::gen_program;
 
 fn bench(c: &mut Criterion) {
@@ -45,14 +46,12 @@ fn bench(c: &mut Criterion) {
             },
         ),
     ] {
-        g.bench_function(name, |b| {
-            b.iter(|| {
-                let mut diags = Diagnostics::new();
-                let file = parse::parse_file_with(SourceId(0), &text, &mut diags, &options);
-                parse::check_structure_with(&file, &mut diags, &options);
-                assert!(diags.is_empty(), "the generated program must be clean");
-                file
-            })
+        Runner::new(&mut g).iter(name, || {
+            let mut diags = Diagnostics::new();
+            let file = parse::parse_file_with(SourceId(0), &text, &mut diags, &options);
+            parse::check_structure_with(&file, &mut diags, &options);
+            assert!(diags.is_empty(), "the generated program must be clean");
+            file
         });
     }
     g.finish();

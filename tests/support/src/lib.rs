@@ -9,6 +9,7 @@
 //! - [`robot`]: robot fixtures (tools of the manual's examples) and joint assertions;
 //! - [`src_files`]: the crate's own sources, for the tests that read the code (layers, catalogue);
 //! - [`gen_program`]: large valid RAPID programs for the parser's tests and benchmarks;
+//! - [`fixed_iters`]: the benchmarks' fixed-iteration mode, for counting instructions;
 //! - [`rws_http`], [`serve`]: the RWS tests' HTTP client and a real `rapidvc serve`;
 //! - [`sandbox`]: a HOME with links pointing out of it, for the mass-storage attacks.
 //!
@@ -19,6 +20,7 @@ pub mod csv;
 pub mod egm_loop;
 pub mod egm_pair;
 pub mod egm_wire;
+pub mod fixed_iters;
 pub mod gen_program;
 pub mod procs;
 pub mod robot;
