@@ -4,7 +4,7 @@
 //! Names are compared case-folded everywhere (RAPID is case-insensitive); use
 //! [`Ident::folded`] rather than comparing `node` strings directly.
 
-use crate::source::{Span, Spanned};
+use crate::source::{SourceText, Span, Spanned};
 
 mod dump;
 pub(crate) mod literal;
@@ -35,6 +35,10 @@ pub struct File {
     pub modules: Vec<Module>,
     /// The whole file.
     pub span: Span,
+    /// The text of the file (shared with the [`crate::source::SourceMap`], not a copy):
+    /// packed aggregates ([`ExprKind::PackedAggregate`]) and packed call arguments
+    /// ([`CallArgs::Packed`]) are read from it.
+    pub text: SourceText,
 }
 
 /// `MODULE name [(attrs)] … ENDMODULE`.
@@ -376,44 +380,52 @@ pub enum CallArgs {
 
 impl CallArgs {
     /// The arguments of the call whose procedure name is `name`: the tree the parser builds
-    /// for them, spans included, whether packed or not.
-    pub fn items(&self, name: &Ident) -> std::borrow::Cow<'_, [Arg]> {
+    /// for them, spans included, whether packed or not. `text` is the text of the file
+    /// ([`File::text`]).
+    pub fn items(&self, name: &Ident, text: &str) -> std::borrow::Cow<'_, [Arg]> {
         match self {
             CallArgs::Tree(args) => std::borrow::Cow::Borrowed(args),
-            CallArgs::Packed(p) => std::borrow::Cow::Owned(p.unpack(name.span.end_point())),
+            CallArgs::Packed(p) => std::borrow::Cow::Owned(p.unpack(text, name.span.end_point())),
         }
     }
 }
 
-/// The text of a call's arguments from the end of the procedure's name up to and including
-/// the `;`. The parser packs arguments only when reading this text back gives the tree it
-/// built (`ast/literal.rs`, [`literal::read_call_args`]), so unpacking cannot fail.
-#[derive(Clone, PartialEq, Eq)]
-pub struct PackedArgs(Box<str>);
+/// A call's arguments kept as their text in the file ([`File::text`]): from the end of the
+/// procedure's name up to and including the `;`, which is where this holds. The parser packs
+/// arguments only when reading this text back gives the tree it built (`ast/literal.rs`,
+/// [`literal::read_call_args`]), so unpacking cannot fail.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub struct PackedArgs {
+    /// The byte after the `;`.
+    end: u32,
+}
 
 impl PackedArgs {
-    /// Pack `text`, which reads back as the arguments the parser built (see
-    /// [`literal::pack_call_args`]).
-    pub(crate) fn new(text: &str) -> Self {
-        PackedArgs(text.into())
+    /// Arguments that read back as the ones the parser built, written up to byte `end` (the
+    /// byte after the `;`).
+    pub(crate) fn new(end: usize) -> Self {
+        PackedArgs { end: end as u32 }
     }
 
-    /// The arguments as written (from the end of the name to the `;`).
-    pub fn text(&self) -> &str {
-        &self.0
+    /// The arguments as written in the file's `text`, from `at` (the end of the procedure's
+    /// name) to the `;`.
+    pub fn text<'t>(&self, text: &'t str, at: Span) -> &'t str {
+        text.get(at.start as usize..self.end as usize).unwrap_or("")
     }
 
-    /// The argument tree of this text written at `at` (the end of the procedure's name).
-    pub fn unpack(&self, at: Span) -> Vec<Arg> {
+    /// The argument tree of these arguments in the file's `text`, written at `at` (the end of
+    /// the procedure's name).
+    pub fn unpack(&self, text: &str, at: Span) -> Vec<Arg> {
         // (Not reached: the text was read back when it was packed. No arguments at all
         // would be reported as missing ones, so it would not go unnoticed.)
-        literal::read_call_args(at.source, &self.0, at.start as usize).unwrap_or_default()
+        literal::read_call_args(at.source, self.text(text, at), at.start as usize)
+            .unwrap_or_default()
     }
 }
 
 impl std::fmt::Debug for PackedArgs {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "PackedArgs({:?})", self.0)
+        write!(f, "PackedArgs(..{})", self.end)
     }
 }
 
@@ -528,42 +540,47 @@ pub enum ExprKind {
     Placeholder(Placeholder),
 }
 
-/// The text of a literal aggregate, from its `[` to its `]` (see
-/// [`ExprKind::PackedAggregate`]). The parser packs an aggregate only when reading it reported
+/// A literal aggregate kept as its text in the file ([`File::text`]): from its `[` to its
+/// `]`, the span of the expression that holds it (see [`ExprKind::PackedAggregate`]). It
+/// takes no memory of its own. The parser packs an aggregate only when reading it reported
 /// nothing, so unpacking cannot fail.
-#[derive(Clone, PartialEq, Eq)]
-pub struct PackedAggregate(Box<str>);
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub struct PackedAggregate(());
 
 impl PackedAggregate {
-    /// Pack `text`, which the parser has read as a literal aggregate without a diagnostic.
-    pub(crate) fn new(text: &str) -> Self {
-        PackedAggregate(text.into())
+    /// An aggregate the parser has read without a diagnostic.
+    pub(crate) fn new() -> Self {
+        PackedAggregate(())
     }
 
-    /// The aggregate as written.
-    pub fn text(&self) -> &str {
-        &self.0
+    /// The aggregate as written in the file's `text`, at `span` (the span of the expression
+    /// that holds it).
+    pub fn text<'t>(&self, text: &'t str, span: Span) -> &'t str {
+        text.get(span.start as usize..span.end as usize)
+            .unwrap_or("")
     }
 
-    /// The [`ExprKind::Aggregate`] tree of this aggregate written at `span` (the span of the
-    /// expression that holds it): the tree the parser builds for it, node for node.
-    pub fn unpack(&self, span: Span) -> Expr {
-        literal::unpack_aggregate(span.source, &self.0, span.start as usize)
+    /// The [`ExprKind::Aggregate`] tree of this aggregate in the file's `text`, written at
+    /// `span` (the span of the expression that holds it): the tree the parser builds for it,
+    /// node for node.
+    pub fn unpack(&self, text: &str, span: Span) -> Expr {
+        literal::unpack_aggregate(span.source, self.text(text, span), span.start as usize)
     }
 }
 
 impl std::fmt::Debug for PackedAggregate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "PackedAggregate({:?})", self.0)
+        write!(f, "PackedAggregate")
     }
 }
 
 impl Expr {
-    /// The items of an aggregate, packed or not; `None` for any other expression.
-    pub fn aggregate_items(&self) -> Option<std::borrow::Cow<'_, [Expr]>> {
+    /// The items of an aggregate, packed or not, in the file's `text` ([`File::text`]);
+    /// `None` for any other expression.
+    pub fn aggregate_items(&self, text: &str) -> Option<std::borrow::Cow<'_, [Expr]>> {
         match &self.kind {
             ExprKind::Aggregate(items) => Some(std::borrow::Cow::Borrowed(items)),
-            ExprKind::PackedAggregate(p) => match p.unpack(self.span).kind {
+            ExprKind::PackedAggregate(p) => match p.unpack(text, self.span).kind {
                 ExprKind::Aggregate(items) => Some(std::borrow::Cow::Owned(items)),
                 _ => None,
             },
@@ -571,10 +588,11 @@ impl Expr {
         }
     }
 
-    /// This expression with a packed aggregate unpacked (borrowed as it is otherwise).
-    pub fn unpacked(&self) -> std::borrow::Cow<'_, Expr> {
+    /// This expression with a packed aggregate unpacked from the file's `text` (borrowed as
+    /// it is otherwise).
+    pub fn unpacked(&self, text: &str) -> std::borrow::Cow<'_, Expr> {
         match &self.kind {
-            ExprKind::PackedAggregate(p) => std::borrow::Cow::Owned(p.unpack(self.span)),
+            ExprKind::PackedAggregate(p) => std::borrow::Cow::Owned(p.unpack(text, self.span)),
             _ => std::borrow::Cow::Borrowed(self),
         }
     }

@@ -15,7 +15,7 @@
 
 use crate::ast;
 use crate::diag::Diagnostics;
-use crate::source::SourceId;
+use crate::source::{IntoSourceText, SourceId};
 
 mod build;
 pub mod error;
@@ -43,19 +43,25 @@ pub const MAX_ERRORS_PER_FILE: usize = 100;
 
 /// Parse one file. Always returns a (possibly partial) AST; every syntax error, including
 /// `ENDPROC`/`ENDFUNC` mismatches and statements outside routines, goes into `diags`.
-pub fn parse_file(id: SourceId, text: &str, diags: &mut Diagnostics) -> ast::File {
-    build::parse(id, text, diags, &ParseOptions::default())
+///
+/// `text` is kept in the tree ([`ast::File::text`]): give the source map's text
+/// (`&map.get(id).text`) to share it rather than copy it.
+pub fn parse_file(id: SourceId, text: impl IntoSourceText, diags: &mut Diagnostics) -> ast::File {
+    parse_file_with(id, text, diags, &ParseOptions::default())
 }
 
 /// [`parse_file`] with explicit [`ParseOptions`]. The AST and the diagnostics do not depend
 /// on the options: only the time it takes does.
 pub fn parse_file_with(
     id: SourceId,
-    text: &str,
+    text: impl IntoSourceText,
     diags: &mut Diagnostics,
     options: &ParseOptions,
 ) -> ast::File {
-    build::parse(id, text, diags, options)
+    let text = text.into_source_text();
+    let mut file = build::parse(id, &text, diags, options);
+    file.text = text;
+    file
 }
 
 /// How the parser may use the machine's cores.

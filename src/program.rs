@@ -291,7 +291,7 @@ fn sema_inputs<'a>(std_files: &'a [ast::File], user: &'a [ast::File]) -> Vec<sem
 pub fn parse_module(
     sources: &mut SourceMap,
     name: impl Into<String>,
-    text: impl Into<Arc<str>>,
+    text: impl crate::source::IntoSourceText,
     diags: &mut Diagnostics,
 ) -> ast::File {
     let id = sources.add(name, text);
@@ -311,7 +311,7 @@ fn parse_source(sources: &SourceMap, id: SourceId, diags: &mut Diagnostics) -> a
 pub fn load_texts<N, T>(modules: impl IntoIterator<Item = (N, T)>, config: config::Config) -> Loaded
 where
     N: Into<String>,
-    T: Into<Arc<str>>,
+    T: crate::source::IntoSourceText,
 {
     let mut sources = SourceMap::new();
     let mut diags = Diagnostics::new();

@@ -124,13 +124,101 @@ impl<T> std::ops::Deref for Spanned<T> {
     }
 }
 
+/// The text of one source file, shared (cloning it copies no text). It keeps the `String`
+/// the file was decoded into: a file's text is held once for the whole run (an `Arc<str>`
+/// would be a second copy), and the syntax tree refers to it rather than copying parts of it
+/// (see [`crate::ast::File::text`]).
+#[derive(Clone, Default, PartialEq, Eq)]
+pub struct SourceText(Arc<String>);
+
+impl SourceText {
+    /// The text.
+    pub fn as_str(&self) -> &str {
+        self.0.as_str()
+    }
+
+    /// True when both are the same text (one of them a clone of the other).
+    pub fn ptr_eq(a: &SourceText, b: &SourceText) -> bool {
+        Arc::ptr_eq(&a.0, &b.0)
+    }
+}
+
+impl std::ops::Deref for SourceText {
+    type Target = str;
+    fn deref(&self) -> &str {
+        self.0.as_str()
+    }
+}
+
+impl fmt::Debug for SourceText {
+    /// Only the length: a syntax tree's debug output would otherwise hold its whole file.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "SourceText({} bytes)", self.0.len())
+    }
+}
+
+impl fmt::Display for SourceText {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// What can become a [`SourceText`]: a `String` or a `SourceText` is taken as it is (no copy);
+/// `&SourceText` is shared; any other text is copied.
+pub trait IntoSourceText {
+    /// The text as a [`SourceText`].
+    fn into_source_text(self) -> SourceText;
+}
+
+impl IntoSourceText for SourceText {
+    fn into_source_text(self) -> SourceText {
+        self
+    }
+}
+
+impl IntoSourceText for &SourceText {
+    fn into_source_text(self) -> SourceText {
+        self.clone()
+    }
+}
+
+impl IntoSourceText for String {
+    fn into_source_text(self) -> SourceText {
+        SourceText(Arc::new(self))
+    }
+}
+
+impl<T: AsRef<str> + ?Sized> IntoSourceText for &T {
+    fn into_source_text(self) -> SourceText {
+        SourceText(Arc::new(self.as_ref().to_string()))
+    }
+}
+
+impl IntoSourceText for Arc<str> {
+    fn into_source_text(self) -> SourceText {
+        SourceText(Arc::new(self.to_string()))
+    }
+}
+
+impl miette::SourceCode for SourceText {
+    fn read_span<'a>(
+        &'a self,
+        span: &miette::SourceSpan,
+        context_lines_before: usize,
+        context_lines_after: usize,
+    ) -> Result<Box<dyn miette::SpanContents<'a> + 'a>, miette::MietteError> {
+        self.as_str()
+            .read_span(span, context_lines_before, context_lines_after)
+    }
+}
+
 /// One loaded file: its display name, decoded text and line starts.
 #[derive(Debug, Clone)]
 pub struct SourceFile {
     /// Display name (usually the path as given).
     pub name: String,
     /// Decoded text (UTF-8, or Latin-1 mapped byte-for-char when the file is not UTF-8).
-    pub text: Arc<str>,
+    pub text: SourceText,
     line_starts: Vec<u32>,
 }
 
@@ -199,6 +287,8 @@ fn line_starts(text: &str) -> Vec<u32> {
             starts.push(i as u32 + 1);
         }
     }
+    // (Grown by doubling, it may hold twice what it needs for the whole run.)
+    starts.shrink_to_fit();
     starts
 }
 
@@ -236,8 +326,8 @@ impl SourceMap {
     }
 
     /// Add a file and return its id.
-    pub fn add(&mut self, name: impl Into<String>, text: impl Into<Arc<str>>) -> SourceId {
-        let text: Arc<str> = text.into();
+    pub fn add(&mut self, name: impl Into<String>, text: impl IntoSourceText) -> SourceId {
+        let text = text.into_source_text();
         let line_starts = line_starts(&text);
         let id = SourceId(self.files.len() as u32);
         self.files.push(SourceFile {
@@ -257,7 +347,7 @@ impl SourceMap {
         self.files.get(id.0 as usize).unwrap_or_else(|| {
             EMPTY.get_or_init(|| SourceFile {
                 name: "<unknown>".into(),
-                text: Arc::from(""),
+                text: SourceText::default(),
                 line_starts: vec![0],
             })
         })
@@ -279,7 +369,7 @@ impl SourceMap {
     }
 
     /// A miette source for rendering a diagnostic about file `id`.
-    pub fn named_source(&self, id: SourceId) -> miette::NamedSource<Arc<str>> {
+    pub fn named_source(&self, id: SourceId) -> miette::NamedSource<SourceText> {
         let f = self.get(id);
         miette::NamedSource::new(f.name.clone(), f.text.clone())
     }

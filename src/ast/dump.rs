@@ -9,7 +9,11 @@ use super::*;
 impl File {
     /// The dump of the whole file.
     pub fn dump(&self) -> String {
-        let mut d = Dumper::default();
+        let mut d = Dumper {
+            out: String::new(),
+            indent: 0,
+            text: &self.text,
+        };
         for m in &self.modules {
             d.module(m);
         }
@@ -18,25 +22,27 @@ impl File {
 }
 
 impl Expr {
-    /// The expression as an S-expression (`(+ a (* b c))`).
-    pub fn sexpr(&self) -> String {
+    /// The expression as an S-expression (`(+ a (* b c))`); `text` is the text of its file
+    /// ([`File::text`]), where packed aggregates are read.
+    pub fn sexpr(&self, text: &str) -> String {
         let mut s = String::new();
-        sexpr(self, &mut s);
+        sexpr(self, &mut s, text);
         s
     }
 }
 
-#[derive(Default)]
-struct Dumper {
+struct Dumper<'t> {
     out: String,
     indent: usize,
+    /// The file's text (packed aggregates and call arguments are read from it).
+    text: &'t str,
 }
 
 fn span(s: Span) -> String {
     format!("@{}..{}", s.start, s.end)
 }
 
-impl Dumper {
+impl Dumper<'_> {
     fn line(&mut self, text: &str) {
         for _ in 0..self.indent {
             self.out.push_str("  ");
@@ -52,6 +58,7 @@ impl Dumper {
     }
 
     fn module(&mut self, m: &Module) {
+        let t = self.text;
         let attrs: Vec<String> = m.attrs.iter().map(|a| format!("{:?}", a.node)).collect();
         let attrs = if attrs.is_empty() {
             String::new()
@@ -75,7 +82,7 @@ impl Dumper {
                                     "{} {}{} {}",
                                     f.ty.node,
                                     f.name.node,
-                                    dims(&f.dims),
+                                    dims(&f.dims, t),
                                     span(f.span)
                                 ));
                             }
@@ -99,6 +106,7 @@ impl Dumper {
     }
 
     fn data(&mut self, x: &DataDecl) {
+        let t = self.text;
         let storage = match x.storage {
             Storage::Var => "VAR",
             Storage::Pers => "PERS",
@@ -107,7 +115,7 @@ impl Dumper {
         let init = x
             .init
             .as_ref()
-            .map(|e| format!(" := {}", e.sexpr()))
+            .map(|e| format!(" := {}", e.sexpr(t)))
             .unwrap_or_default();
         self.line(&format!(
             "{}{}{storage} {} {}{}{init} {}",
@@ -115,12 +123,13 @@ impl Dumper {
             if x.task { "TASK " } else { "" },
             x.ty.node,
             x.name.node,
-            dims(&x.dims),
+            dims(&x.dims, t),
             span(x.span)
         ));
     }
 
     fn routine(&mut self, r: &Routine) {
+        let t = self.text;
         let kind = match &r.kind {
             RoutineKind::Proc => "PROC".to_string(),
             RoutineKind::Func(t) => format!("FUNC {}", t.node),
@@ -154,7 +163,7 @@ impl Dumper {
                     .map(|l| {
                         format!(
                             " ({})",
-                            l.iter().map(Expr::sexpr).collect::<Vec<_>>().join(", ")
+                            l.iter().map(|e| e.sexpr(t)).collect::<Vec<_>>().join(", ")
                         )
                     })
                     .unwrap_or_default();
@@ -175,22 +184,23 @@ impl Dumper {
     }
 
     fn stmt(&mut self, s: &Stmt) {
+        let t = self.text;
         let at = span(s.span);
         match &s.kind {
             StmtKind::Assign { target, value } => self.line(&format!(
                 "assign {} := {} {at}",
-                target.sexpr(),
-                value.sexpr()
+                target.sexpr(t),
+                value.sexpr(t)
             )),
             StmtKind::Call { name, args } => self.line(&format!(
                 "call {}{} {at}",
                 name.node,
-                args_text(&args.items(name), " ")
+                args_text(&args.items(name, t), " ", t)
             )),
             StmtKind::LateCall { name, args } => self.line(&format!(
                 "latecall %{}%{} {at}",
-                name.sexpr(),
-                args_text(args, " ")
+                name.sexpr(t),
+                args_text(args, " ", t)
             )),
             StmtKind::If {
                 cond,
@@ -198,10 +208,10 @@ impl Dumper {
                 elseifs,
                 else_body,
             } => {
-                self.line(&format!("if {} {at}", cond.sexpr()));
+                self.line(&format!("if {} {at}", cond.sexpr(t)));
                 self.nested(|d| d.stmts(then_body));
                 for (c, b) in elseifs {
-                    self.line(&format!("elseif {}", c.sexpr()));
+                    self.line(&format!("elseif {}", c.sexpr(t)));
                     self.nested(|d| d.stmts(b));
                 }
                 if let Some(b) = else_body {
@@ -210,11 +220,11 @@ impl Dumper {
                 }
             }
             StmtKind::CompactIf { cond, stmt } => {
-                self.line(&format!("if-compact {} {at}", cond.sexpr()));
+                self.line(&format!("if-compact {} {at}", cond.sexpr(t)));
                 self.nested(|d| d.stmt(stmt));
             }
             StmtKind::While { cond, body } => {
-                self.line(&format!("while {} {at}", cond.sexpr()));
+                self.line(&format!("while {} {at}", cond.sexpr(t)));
                 self.nested(|d| d.stmts(body));
             }
             StmtKind::For {
@@ -226,13 +236,13 @@ impl Dumper {
             } => {
                 let step = step
                     .as_ref()
-                    .map(|s| format!(" step {}", s.sexpr()))
+                    .map(|s| format!(" step {}", s.sexpr(t)))
                     .unwrap_or_default();
                 self.line(&format!(
                     "for {} from {} to {}{step} {at}",
                     var.node,
-                    from.sexpr(),
-                    to.sexpr()
+                    from.sexpr(t),
+                    to.sexpr(t)
                 ));
                 self.nested(|d| d.stmts(body));
             }
@@ -241,10 +251,10 @@ impl Dumper {
                 cases,
                 default,
             } => {
-                self.line(&format!("test {} {at}", subject.sexpr()));
+                self.line(&format!("test {} {at}", subject.sexpr(t)));
                 self.nested(|d| {
                     for c in cases {
-                        let v: Vec<String> = c.values.iter().map(Expr::sexpr).collect();
+                        let v: Vec<String> = c.values.iter().map(|e| e.sexpr(t)).collect();
                         d.line(&format!("case {} {}", v.join(", "), span(c.span)));
                         d.nested(|d| d.stmts(&c.body));
                     }
@@ -256,14 +266,14 @@ impl Dumper {
             }
             StmtKind::Label(l) => self.line(&format!("label {} {at}", l.node)),
             StmtKind::Goto(l) => self.line(&format!("goto {} {at}", l.node)),
-            StmtKind::Return(e) => self.line(&format!("return{} {at}", opt(e))),
-            StmtKind::Raise(e) => self.line(&format!("raise{} {at}", opt(e))),
+            StmtKind::Return(e) => self.line(&format!("return{} {at}", opt(e, t))),
+            StmtKind::Raise(e) => self.line(&format!("raise{} {at}", opt(e, t))),
             StmtKind::Retry => self.line(&format!("retry {at}")),
             StmtKind::TryNext => self.line(&format!("trynext {at}")),
             StmtKind::Exit => self.line(&format!("exit {at}")),
             StmtKind::Connect { target, trap } => self.line(&format!(
                 "connect {} with {} {at}",
-                target.sexpr(),
+                target.sexpr(t),
                 trap.node
             )),
             StmtKind::Placeholder(p) => self.line(&format!("{} {at}", p.as_str())),
@@ -275,19 +285,19 @@ fn local(l: bool) -> &'static str {
     if l { "LOCAL " } else { "" }
 }
 
-fn opt(e: &Option<Box<Expr>>) -> String {
+fn opt(e: &Option<Box<Expr>>, t: &str) -> String {
     e.as_ref()
-        .map(|e| format!(" {}", e.sexpr()))
+        .map(|e| format!(" {}", e.sexpr(t)))
         .unwrap_or_default()
 }
 
-fn dims(d: &[Expr]) -> String {
+fn dims(d: &[Expr], t: &str) -> String {
     if d.is_empty() {
         String::new()
     } else {
         format!(
             "{{{}}}",
-            d.iter().map(Expr::sexpr).collect::<Vec<_>>().join(", ")
+            d.iter().map(|e| e.sexpr(t)).collect::<Vec<_>>().join(", ")
         )
     }
 }
@@ -322,29 +332,29 @@ fn param(p: &Param) -> String {
     )
 }
 
-fn args_text(args: &[Arg], lead: &str) -> String {
+fn args_text(args: &[Arg], lead: &str, t: &str) -> String {
     if args.is_empty() {
         return String::new();
     }
-    let v: Vec<String> = args.iter().map(arg).collect();
+    let v: Vec<String> = args.iter().map(|a| arg(a, t)).collect();
     format!("{lead}{}", v.join(", "))
 }
 
-fn arg(a: &Arg) -> String {
+fn arg(a: &Arg, t: &str) -> String {
     match &a.kind {
-        ArgKind::Positional(e) => e.sexpr(),
-        ArgKind::Named { name, value } => format!("{}:={}", name.node, value.sexpr()),
+        ArgKind::Positional(e) => e.sexpr(t),
+        ArgKind::Named { name, value } => format!("{}:={}", name.node, value.sexpr(t)),
         ArgKind::Optional { name, value: None } => format!("\\{}", name.node),
         ArgKind::Optional {
             name,
             value: Some(v),
-        } => format!("\\{}:={}", name.node, v.sexpr()),
+        } => format!("\\{}:={}", name.node, v.sexpr(t)),
         ArgKind::Conditional { name, param } => format!("\\{}?{}", name.node, param.node),
         ArgKind::Placeholder(p) => p.as_str().to_string(),
     }
 }
 
-fn sexpr(e: &Expr, s: &mut String) {
+fn sexpr(e: &Expr, s: &mut String, t: &str) {
     match &e.kind {
         ExprKind::Num(v) => {
             let _ = write!(s, "{v}");
@@ -355,25 +365,25 @@ fn sexpr(e: &Expr, s: &mut String) {
         ExprKind::Bool(b) => s.push_str(if *b { "TRUE" } else { "FALSE" }),
         ExprKind::Name(n) => s.push_str(&n.node),
         ExprKind::Component { base, field } => {
-            sexpr(base, s);
+            sexpr(base, s, t);
             s.push('.');
             s.push_str(&field.node);
         }
         ExprKind::Index { base, indices } => {
-            sexpr(base, s);
+            sexpr(base, s, t);
             s.push('{');
             for (i, x) in indices.iter().enumerate() {
                 if i > 0 {
                     s.push_str(", ");
                 }
-                sexpr(x, s);
+                sexpr(x, s, t);
             }
             s.push('}');
         }
         ExprKind::Call { name, args } => {
             s.push_str(&name.node);
             s.push('(');
-            s.push_str(&args_text(args, ""));
+            s.push_str(&args_text(args, "", t));
             s.push(')');
         }
         ExprKind::Aggregate(items) => {
@@ -382,7 +392,7 @@ fn sexpr(e: &Expr, s: &mut String) {
                 if i > 0 {
                     s.push_str(", ");
                 }
-                sexpr(x, s);
+                sexpr(x, s, t);
             }
             s.push(']');
         }
@@ -392,24 +402,24 @@ fn sexpr(e: &Expr, s: &mut String) {
                 UnaryOp::Plus => "(plus ",
                 UnaryOp::Not => "(NOT ",
             });
-            sexpr(expr, s);
+            sexpr(expr, s, t);
             s.push(')');
         }
         ExprKind::Binary { op, lhs, rhs } => {
             s.push('(');
             s.push_str(op.as_str());
             s.push(' ');
-            sexpr(lhs, s);
+            sexpr(lhs, s, t);
             s.push(' ');
-            sexpr(rhs, s);
+            sexpr(rhs, s, t);
             s.push(')');
         }
         ExprKind::Paren(x) => {
             s.push_str("(paren ");
-            sexpr(x, s);
+            sexpr(x, s, t);
             s.push(')');
         }
         ExprKind::Placeholder(p) => s.push_str(p.as_str()),
-        ExprKind::PackedAggregate(p) => sexpr(&p.unpack(e.span), s),
+        ExprKind::PackedAggregate(p) => sexpr(&p.unpack(t, e.span), s, t),
     }
 }

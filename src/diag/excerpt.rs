@@ -9,7 +9,6 @@
 //! the excerpt's offsets; the header keeps the file's own line and column.
 
 use std::borrow::Cow;
-use std::sync::Arc;
 
 use miette::{LabeledSpan, MietteError, MietteSpanContents, SourceCode, SourceSpan, SpanContents};
 
@@ -89,7 +88,7 @@ struct Line {
 /// The lines of one file around the labels of one diagnostic (see the module docs).
 pub(crate) struct Excerpt {
     name: String,
-    file_text: Arc<str>,
+    file_text: crate::source::SourceText,
     text: String,
     lines: Vec<Line>,
 }

@@ -55,6 +55,8 @@ pub(crate) fn parse(
     let empty = ast::File {
         modules: Vec::new(),
         span: whole,
+        // (The caller puts the file's text here.)
+        text: Default::default(),
     };
     // Spans are u32 offsets.
     if text.len() >= u32::MAX as usize {

@@ -27,7 +27,7 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
         // that has any, its diagnostics (in the order one thread finds them).
         let parallel = threads > 1 && m.items.len() > 1;
         let inside = if parallel {
-            items_in_parallel(&m.items, source, threads)
+            items_in_parallel(&m.items, source, &file.text, threads)
         } else {
             Vec::new()
         };
@@ -41,6 +41,7 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
                 let mut c = Checker {
                     diags: &mut *diags,
                     file: source,
+                    text: &file.text,
                 };
                 names.add(&mut c, name, scope);
             }
@@ -52,6 +53,7 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
                 let mut c = Checker {
                     diags: &mut *diags,
                     file: source,
+                    text: &file.text,
                 };
                 c.item(item);
             }
@@ -75,6 +77,7 @@ fn item_name(item: &ModuleItem) -> Option<&Ident> {
 fn items_in_parallel(
     items: &[ModuleItem],
     source: crate::source::SourceId,
+    text: &str,
     threads: usize,
 ) -> Vec<(usize, Diagnostics)> {
     let run = |from: usize, items: &[ModuleItem]| {
@@ -84,6 +87,7 @@ fn items_in_parallel(
             Checker {
                 diags: &mut d,
                 file: source,
+                text,
             }
             .item(item);
             if !d.is_empty() {
@@ -110,6 +114,8 @@ fn items_in_parallel(
 struct Checker<'d> {
     diags: &'d mut Diagnostics,
     file: crate::source::SourceId,
+    /// The file's text (packed call arguments are read from it).
+    text: &'d str,
 }
 
 /// A scope for duplicate names: its kind and name, written out only for a message.
@@ -292,7 +298,7 @@ impl Checker<'_> {
             }
             StmtKind::Call { name, args } => {
                 self.ident(name);
-                self.args(&args.items(name));
+                self.args(&args.items(name, self.text));
             }
             StmtKind::LateCall { name, args } => {
                 self.expr(name);

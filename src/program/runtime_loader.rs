@@ -20,7 +20,7 @@ use crate::source::SourceMap;
 struct UserModule {
     name: String,
     file: ast::File,
-    text: Arc<str>,
+    text: crate::source::SourceText,
     /// The controller path it was loaded from at run time.
     path: Option<String>,
     modified: Option<f64>,
@@ -73,6 +73,7 @@ impl RuntimeLoader {
                         ast::File {
                             modules: Vec::new(),
                             span: file.span,
+                            text: file.text.clone(),
                         }
                     },
                     text: f.text.clone(),
@@ -134,7 +135,7 @@ impl ModuleLoader for RuntimeLoader {
     fn add(&mut self, registry: &Registry, module: NewModule<'_>) -> Result<Program, LinkError> {
         let mut diags = Diagnostics::new();
         let id = self.sources.add(module.path, module.text);
-        let file = parse::parse_file(id, module.text, &mut diags);
+        let file = parse::parse_file(id, &self.sources.get(id).text, &mut diags);
         parse::check_structure(&file, &mut diags);
         if let Some(d) = diags
             .iter()
@@ -164,8 +165,8 @@ impl ModuleLoader for RuntimeLoader {
         }
         self.user.push(UserModule {
             name: name.to_string(),
+            text: file.text.clone(),
             file,
-            text: Arc::from(module.text),
             path: Some(module.path.to_string()),
             modified: module.modified,
         });
@@ -215,7 +216,8 @@ impl ModuleLoader for RuntimeLoader {
             .iter()
             .find(|u| u.name.eq_ignore_ascii_case(name))
             .map(|u| ModuleFile {
-                text: u.text.clone(),
+                // (A copy: only a module saved or unloaded at run time asks for it.)
+                text: Arc::from(u.text.as_str()),
                 path: u.path.clone(),
                 modified: u.modified,
             })

@@ -195,10 +195,11 @@ impl<'a> Checker<'a> {
 
     fn add_global(&mut self, g: Global) -> GlobalId {
         let id = GlobalId(self.globals.len() as u32);
-        self.data_syms
-            .entry(g.name.to_ascii_uppercase())
-            .or_default()
-            .push(id);
+        let list = self
+            .data_syms
+            .entry(ast::EcoString::from(g.name.to_ascii_uppercase()))
+            .or_default();
+        *list = list.iter().copied().chain([id]).collect();
         self.globals.push(g);
         self.global_decls.push(Vec::new());
         id
@@ -267,6 +268,17 @@ impl<'a> Checker<'a> {
 
     /// Module data declarations.
     pub(super) fn collect_globals(&mut self) {
+        // (Sized up front: a module of 250,000 declarations would otherwise copy the lists
+        // as they double, and hold up to twice what they need.)
+        let data = self
+            .module_asts
+            .iter()
+            .flat_map(|m| &m.items)
+            .filter(|item| matches!(item, ModuleItem::Data(_)))
+            .count();
+        self.globals.reserve(data);
+        self.global_decls.reserve(data);
+        self.data_syms.reserve(data);
         for mi in 0..self.module_asts.len() {
             let m = self.module_asts[mi];
             let mid = ModuleId(mi as u32);
@@ -334,7 +346,11 @@ impl<'a> Checker<'a> {
         }
         let stdlib = self.is_stdlib(mid);
         let key = d.name.folded();
-        let existing: Vec<GlobalId> = self.data_syms.get(&key).cloned().unwrap_or_default();
+        let existing: Vec<GlobalId> = self
+            .data_syms
+            .get(key.as_str())
+            .map(|l| l.to_vec())
+            .unwrap_or_default();
         for gid in existing {
             let g = &self.globals[gid.0 as usize];
             let GlobalOrigin::Module(gm) = g.origin else {
@@ -391,7 +407,8 @@ impl<'a> Checker<'a> {
             init: None,
             span: d.span,
         });
-        self.global_decls[gid.0 as usize].push((mid, d));
+        // (One declaration, in a list of exactly one.)
+        self.global_decls[gid.0 as usize] = vec![(mid, d)];
     }
 
     /// Routine headers: parameters, slots, return types.

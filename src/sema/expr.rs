@@ -130,7 +130,9 @@ impl Checker<'_> {
                 }
             },
             AK::Call { name, args } => self.func_call(name, args, span),
-            AK::PackedAggregate(p) => self.rvalue(&p.unpack(span), expect, dims),
+            AK::PackedAggregate(p) => {
+                self.rvalue(&p.unpack(self.text_of(span), span), expect, dims)
+            }
             AK::Aggregate(items) => match expect {
                 Some(ty) => self.aggregate(items, ty, dims, span),
                 None => {
@@ -512,7 +514,7 @@ impl Checker<'_> {
                     None => ok = false,
                 }
             } else {
-                let inner = match item.aggregate_items() {
+                let inner = match item.aggregate_items(self.text_of(item.span)) {
                     Some(inner) => inner,
                     None => {
                         self.err(

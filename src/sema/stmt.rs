@@ -294,7 +294,9 @@ impl<'a> Checker<'a> {
         let span = s.span;
         let kind = match &s.kind {
             S::Assign { target, value } => self.assign(target, value)?,
-            S::Call { name, args } => self.proc_call(name, &args.items(name), span)?,
+            S::Call { name, args } => {
+                self.proc_call(name, &args.items(name, self.text_of(name.span)), span)?
+            }
             S::LateCall { name, args } => {
                 let n = self.rvalue_as(name, Ty::STRING, "the procedure name of a late-bound call");
                 let largs = self.late_args(args);

@@ -421,7 +421,7 @@ fn text_now(cx: &Ctx<'_>, name: &str) -> Exec<(String, String)> {
     // (start, end, replacement) in the text the declarations were read from.
     let mut edits: Vec<(usize, usize, String)> = Vec::new();
     let mut values = String::new();
-    let mut base: Option<std::sync::Arc<str>> = None;
+    let mut base: Option<crate::source::SourceText> = None;
     for (i, g) in prog.globals.iter().enumerate() {
         let in_module = matches!(g.origin, GlobalOrigin::Module(m) if m.0 as usize == mid);
         if !in_module || g.storage != Storage::Pers {
@@ -438,7 +438,7 @@ fn text_now(cx: &Ctx<'_>, name: &str) -> Exec<(String, String)> {
         let source = &loader.sources().get(g.span.source).text;
         if base
             .as_ref()
-            .is_some_and(|b| !std::sync::Arc::ptr_eq(b, source))
+            .is_some_and(|b| !crate::source::SourceText::ptr_eq(b, source))
         {
             // Declarations from two texts: not one module file; keep the text as loaded.
             return Ok((file.text.to_string(), values));

@@ -80,10 +80,11 @@ impl Builder<'_, '_> {
             && let Some((e, d)) = check.aggregate(text, base, &mut pos, depth)
             && check.errors.is_empty()
         {
-            let packed = PackedAggregate::new(text.get(..pos).unwrap_or(text));
+            // (Its span is the text read, from `[` to `]`: where unpacking reads it.)
+            debug_assert_eq!(e.span, Span::new(self.file, base, base + pos));
             return Some((
                 Expr {
-                    kind: ExprKind::PackedAggregate(packed),
+                    kind: ExprKind::PackedAggregate(PackedAggregate::new()),
                     span: e.span,
                 },
                 d,

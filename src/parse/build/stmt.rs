@@ -56,7 +56,7 @@ impl Builder<'_, '_> {
             return CallArgs::Tree(args);
         };
         match literal::read_call_args(self.file, text, from) {
-            Some(read) if *read == *args => CallArgs::Packed(PackedArgs::new(text)),
+            Some(read) if *read == *args => CallArgs::Packed(PackedArgs::new(end)),
             _ => CallArgs::Tree(args),
         }
     }
