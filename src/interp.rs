@@ -194,7 +194,6 @@ pub struct Interp {
     /// Late-bound calls: the procedure name being looked up, and the arguments of each
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
-    late_values: Vec<Value>,
     late_args: rustc_hash::FxHashMap<(usize, u32), call::LateArgs>,
     /// Late-bound calls: per call site (and module), the names called there and what each resolved to
     /// (cleared with `late_args` when modules are loaded or unloaded).
@@ -287,7 +286,6 @@ impl Interp {
             strbufs: Vec::new(),
             spare_records: Vec::new(),
             late_name: String::new(),
-            late_values: Vec::new(),
             late_args: rustc_hash::FxHashMap::default(),
             late_sites: rustc_hash::FxHashMap::default(),
             stack_base: 0,

@@ -7,7 +7,9 @@ use super::error::{ErrorKind, Exec, Unwind};
 use super::place::AbsPlace;
 use super::value::{Value, default_value};
 use super::{Frame, Interp, NArg};
-use crate::ir::{Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId, RoutineKind};
+use crate::ir::{
+    Arg, NativeId, ParamMode, ParamSlot, Program, Routine, RoutineId, RoutineKind, Ty,
+};
 use crate::source::Span;
 
 /// The arguments of a late-bound call matched to the parameters of the procedure called:
@@ -21,6 +23,19 @@ pub(crate) struct LateHit {
     name: Box<str>,
     rid: RoutineId,
     args: LateArgs,
+}
+
+/// A compiled value argument of a late-bound call, and its type when it is known.
+pub(crate) struct LateVal {
+    pub f: super::compile::ValFn,
+    pub ty: Option<crate::ir::Ty>,
+}
+
+/// Is the name remembered at a late-bound call site `name` (compared from the end, where
+/// names built from a prefix and a number differ)?
+#[inline]
+fn same_name(known: &str, name: &str) -> bool {
+    known.len() == name.len() && known.bytes().rev().eq(name.bytes().rev())
 }
 
 /// The most names a late-bound call site remembers (a site calling more looks the others
@@ -326,6 +341,16 @@ impl Interp {
         if r.locals.is_empty() {
             return Ok(());
         }
+        if let Some(data) = cr.and_then(|cr| cr.num_data.as_deref()) {
+            for &(s, x) in data {
+                match self.stack.get_mut(bp + s as usize) {
+                    Some(Value::Num(slot)) => *slot = x,
+                    Some(slot) => *slot = Value::Num(x),
+                    None => {}
+                }
+            }
+            return Ok(());
+        }
         for (k, l) in r.locals.iter().enumerate() {
             let cl = cr.and_then(|cr| cr.locals.get(k));
             let v = match (cl, &l.init) {
@@ -490,7 +515,7 @@ impl Interp {
         c: &super::compile::Code,
         name: &str,
         args: &[crate::ir::LateArg],
-        compiled: Option<&[Option<super::compile::ValFn>]>,
+        compiled: Option<&[Option<LateVal>]>,
         module: crate::ir::ModuleId,
         span: Span,
     ) -> Exec<()> {
@@ -505,7 +530,7 @@ impl Interp {
         let known = self
             .late_sites
             .get(&key)
-            .and_then(|hits| hits.iter().find(|h| &*h.name == name))
+            .and_then(|hits| hits.iter().find(|h| same_name(&h.name, name)))
             .map(|h| (h.rid, h.args.clone()));
         let (rid, lowered) = match known {
             Some(k) => k,
@@ -543,14 +568,14 @@ impl Interp {
                 format!("argument for `{}` of `{}` is missing", q.0.name, r.name),
             ));
         }
-        // Value arguments, checked against the parameter types before the call.
-        let mut values = std::mem::take(&mut self.late_values);
-        values.clear();
-        let r = self.late_values(c, p, r, &lowered, compiled, &mut values);
-        let r = r.and_then(|()| self.late_push(c, &callee, rid, &lowered, &mut values, span));
-        values.clear();
-        self.late_values = values;
-        r
+        self.check_depth(span)?;
+        let (bp, rbp) = (self.sp, self.refs.len());
+        if let Err(u) = self.late_args_push(c, p, r, &lowered, compiled) {
+            self.sp = bp;
+            self.refs.truncate(rbp);
+            return Err(u);
+        }
+        self.enter(&callee, rid, bp, rbp, span).map(drop)
     }
 
     /// The procedure a late-bound call in `module` at `span` names (`name` or
@@ -591,78 +616,69 @@ impl Interp {
         })
     }
 
-    /// The value arguments of a late-bound call of `r`, evaluated and checked.
-    fn late_values(
+    /// Push the arguments of a late-bound call of `r` (in program `callee`): the value
+    /// arguments evaluated in parameter order and checked against the parameter types,
+    /// then the references.
+    fn late_args_push(
         &mut self,
         c: &super::compile::Code,
         callee: &Program,
         r: &Routine,
         lowered: &[(Arg, u32)],
-        compiled: Option<&[Option<super::compile::ValFn>]>,
-        values: &mut Vec<Value>,
+        compiled: Option<&[Option<LateVal>]>,
     ) -> Exec<()> {
         let p = &*c.prog;
         for (q, (a, k)) in r.params.iter().zip(lowered.iter()) {
-            if let Arg::Value(e) = a {
-                let f = compiled
-                    .and_then(|fs| fs.get(*k as usize))
-                    .and_then(Option::as_ref);
-                let v = match f {
-                    Some(f) => f(self, c)?,
-                    None => self.eval(p, e)?,
-                };
-                if !super::pers::fits(&callee.types, q.ty, &v) {
-                    return Err(self.error(
-                        errnum::ERR_CALLPROC,
-                        e.span,
-                        format!(
-                            "argument for `{}` of `{}` must be {}",
-                            q.name,
-                            r.name,
-                            callee.types.display(q.ty)
-                        ),
-                    ));
+            match (q.slot, a) {
+                (_, Arg::Value(e)) => {
+                    let f = compiled
+                        .and_then(|fs| fs.get(*k as usize))
+                        .and_then(Option::as_ref);
+                    let (v, known) = match f {
+                        Some(f) => ((f.f)(self, c)?, f.ty),
+                        None => (self.eval(p, e)?, None),
+                    };
+                    // A value of an atomic type known when the call was compiled fits a
+                    // parameter of that type (their ids are the same in every program).
+                    let sure = known == Some(q.ty)
+                        && [Ty::NUM, Ty::DNUM, Ty::BOOL, Ty::STRING].contains(&q.ty);
+                    if !sure && !super::pers::fits(&callee.types, q.ty, &v) {
+                        return Err(self.error(
+                            errnum::ERR_CALLPROC,
+                            e.span,
+                            format!(
+                                "argument for `{}` of `{}` must be {}",
+                                q.name,
+                                r.name,
+                                callee.types.display(q.ty)
+                            ),
+                        ));
+                    }
+                    match q.slot {
+                        ParamSlot::Value(_) => self.push_value(v),
+                        ParamSlot::Ref(_) => {
+                            return Err(self.fatal(
+                                ErrorKind::Host,
+                                e.span,
+                                "internal error: a reference parameter got a value argument",
+                            ));
+                        }
+                    }
                 }
-                values.push(v);
+                (ParamSlot::Value(_), a) => {
+                    let v = self.arg_value(p, a)?;
+                    self.push_value(v);
+                }
+                (ParamSlot::Ref(_), _) => {}
+            }
+        }
+        for (q, (a, _)) in r.params.iter().zip(lowered.iter()) {
+            if let ParamSlot::Ref(_) = q.slot {
+                let a = self.arg_ref(p, a)?;
+                self.refs.push(a);
             }
         }
         Ok(())
-    }
-
-    /// Call `rid` with the arguments of a late-bound call (`values`: the value arguments).
-    fn late_push(
-        &mut self,
-        c: &super::compile::Code,
-        callee: &super::compile::Code,
-        rid: RoutineId,
-        lowered: &[(Arg, u32)],
-        values: &mut Vec<Value>,
-        span: Span,
-    ) -> Exec<()> {
-        let p = &*c.prog;
-        let r = callee.prog.routine(rid);
-        self.check_depth(span)?;
-        let bp = self.sp;
-        let rbp = self.refs.len();
-        let mut values = values.drain(..);
-        for (param, (arg, _)) in r.params.iter().zip(lowered.iter()) {
-            let res = match (param.slot, arg) {
-                (ParamSlot::Value(_), Arg::Value(_)) => {
-                    let v = values.next().unwrap_or(Value::Absent);
-                    self.push_value(v);
-                    Ok(())
-                }
-                (ParamSlot::Value(_), a) => self.arg_value(p, a).map(|v| self.push_value(v)),
-                (ParamSlot::Ref(_), a) => self.arg_ref(p, a).map(|a| self.refs.push(a)),
-            };
-            if let Err(u) = res {
-                self.sp = bp;
-                self.refs.truncate(rbp);
-                return Err(u);
-            }
-        }
-        drop(values);
-        self.enter(callee, rid, bp, rbp, span).map(|_| ())
     }
 
     /// The arguments of a late-bound call matched to the parameters of `rid`.

@@ -55,6 +55,9 @@ pub(crate) struct CRoutine {
     pub ret_num: Option<(NumFn, Span)>,
     /// Its routine data in declaration order, as each call initialises them.
     pub locals: Box<[CLocal]>,
+    /// When every routine data is a `num` without an initial value: their slots and the
+    /// value each starts with (written without looking at the declarations).
+    pub num_data: Option<Box<[(u32, f32)]>>,
 }
 
 /// A routine data declaration: the value it starts with, or its compiled initial value
@@ -62,6 +65,18 @@ pub(crate) struct CRoutine {
 pub(crate) struct CLocal {
     pub default: crate::interp::Value,
     pub init: Option<val::ValFn>,
+}
+
+/// The slots and start values of routine data that are all `num`s without initial values.
+fn num_data(r: &Routine, locals: &[CLocal]) -> Option<Box<[(u32, f32)]>> {
+    r.locals
+        .iter()
+        .zip(locals.iter())
+        .map(|(l, cl)| match (&l.init, &cl.default) {
+            (None, crate::interp::Value::Num(x)) => Some((l.slot, *x)),
+            _ => None,
+        })
+        .collect()
 }
 
 impl CLocal {
@@ -128,14 +143,8 @@ impl Code {
             .iter()
             .map(|r| match tree_walk {
                 false => routine(&prog, r, standard),
-                true => CRoutine {
-                    body: CBlock {
-                        stmts: Box::new([]),
-                        labels: Box::new([]),
-                    },
-                    frame: FrameData::of(&prog, r),
-                    ret_num: None,
-                    locals: r
+                true => {
+                    let locals: Box<[CLocal]> = r
                         .locals
                         .iter()
                         .map(|l| CLocal {
@@ -146,8 +155,18 @@ impl Code {
                             ),
                             init: None,
                         })
-                        .collect(),
-                },
+                        .collect();
+                    CRoutine {
+                        body: CBlock {
+                            stmts: Box::new([]),
+                            labels: Box::new([]),
+                        },
+                        frame: FrameData::of(&prog, r),
+                        ret_num: None,
+                        num_data: num_data(r, &locals),
+                        locals,
+                    }
+                }
             })
             .collect();
         Code {
@@ -173,11 +192,13 @@ fn routine(p: &Program, r: &Routine, standard: &[bool]) -> CRoutine {
         ) if cx.ret == Some(Ty::NUM) => Some((num::num(&cx, e), *span)),
         _ => None,
     };
+    let locals: Box<[CLocal]> = r.locals.iter().map(|l| CLocal::of(&cx, l)).collect();
     CRoutine {
         body: cx.block(&r.body),
         frame: FrameData::of(p, r),
         ret_num,
-        locals: r.locals.iter().map(|l| CLocal::of(&cx, l)).collect(),
+        num_data: num_data(r, &locals),
+        locals,
     }
 }
 
@@ -421,6 +442,17 @@ impl<'p> Cx<'p> {
             StmtKind::If {
                 branches,
                 else_body,
+            } if branches.len() == 1 => {
+                let (e, then) = &branches[0];
+                let w = flow::If {
+                    then: self.block(then),
+                    else_body: else_body.as_ref().map(|b| self.block(b)),
+                };
+                cond::with_cond(self, e, w)
+            }
+            StmtKind::If {
+                branches,
+                else_body,
             } => {
                 let branches: Box<[(BoolFn, CBlock)]> = branches
                     .iter()
@@ -441,10 +473,10 @@ impl<'p> Cx<'p> {
             }
             StmtKind::While { cond, body } => {
                 let head = while_head(s.span, cond);
-                let cond = cond::cond(self, cond);
                 let body = self.block(body);
                 if body.stmts.is_empty() {
                     // No statement counts the iterations: the loop head does.
+                    let cond = cond::cond(self, cond);
                     Box::new(move |it, c| {
                         while cond(it, c)? {
                             it.step(&c.prog, head)?;
@@ -452,12 +484,7 @@ impl<'p> Cx<'p> {
                         Ok(())
                     })
                 } else {
-                    Box::new(move |it, c| {
-                        while cond(it, c)? {
-                            it.exec_cblock(c, &body)?;
-                        }
-                        Ok(())
-                    })
+                    cond::with_cond(self, cond, flow::While { body })
                 }
             }
             StmtKind::For {
@@ -494,9 +521,14 @@ impl<'p> Cx<'p> {
             StmtKind::LateCall { name, args, module } => {
                 let (nspan, span) = (name.span, s.span);
                 let (name, module) = (val::value(self, name), *module);
-                let values: Box<[Option<ValFn>]> = args
+                let values: Box<[Option<crate::interp::call::LateVal>]> = args
                     .iter()
-                    .map(|a| a.value.as_ref().map(|e| val::value(self, e)))
+                    .map(|a| {
+                        a.value.as_ref().map(|e| crate::interp::call::LateVal {
+                            f: val::value(self, e),
+                            ty: self.expr_ty(e),
+                        })
+                    })
                     .collect();
                 let args = args.clone();
                 Box::new(move |it, c| match name(it, c)? {

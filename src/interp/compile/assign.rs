@@ -2,7 +2,7 @@
 //! `RETURN …` in a `FUNC num`), fused with the expression's top operation so that the
 //! statement is a single closure.
 
-use super::num::{Elem, Konst, NumFn, Src, bin, num, opnd};
+use super::num::{Elem, Src, bin, opnd, typed_left, typed_right};
 use super::place::CPlace;
 use super::{Code, Cx, StmtFn};
 use crate::interp::Interp;
@@ -73,9 +73,37 @@ impl Sink {
     }
 }
 
+/// Somewhere a computed `num` is stored.
+trait Put: Send + Sync + 'static {
+    /// Store `x` (not NaN).
+    fn put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()>;
+}
+
+impl Put for Sink {
+    #[inline(always)]
+    fn put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        Sink::put(self, it, c, x)
+    }
+}
+
+/// A whole local slot, as its own type (the statement is compiled for it).
+struct LocalSink(u32, Place);
+
+impl Put for LocalSink {
+    #[inline(always)]
+    fn put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        match it.stack.get_mut(it.bp + self.0 as usize) {
+            Some(Value::Num(old)) => *old = x,
+            Some(other) => *other = Value::Num(x),
+            None => return it.store(&c.prog, &self.1, Value::Num(x)),
+        }
+        Ok(())
+    }
+}
+
 /// Store a computed value, or fail with the error behind its NaN (at the value's span).
 #[inline(always)]
-fn finish(it: &mut Interp, c: &Code, sink: &Sink, x: f32, vs: Span) -> Exec<()> {
+fn finish<P: Put>(it: &mut Interp, c: &Code, sink: &P, x: f32, vs: Span) -> Exec<()> {
     if x.is_nan() {
         return Err(it.take_pending(vs));
     }
@@ -87,40 +115,67 @@ pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
     let vs = value.span;
     match &value.kind {
         ExprKind::Binary(op, a, b) if op.is_num_arith() => {
-            let b = opnd(cx, b);
-            match b.konst() {
-                Some(k) => arith_into(*op, opnd(cx, a), Konst(k), vs, sink),
-                None => arith_into(*op, opnd(cx, a), b, vs, sink),
+            let (op, a, b) = (*op, opnd(cx, a), opnd(cx, b));
+            match sink {
+                Sink::Local(s, pl) => {
+                    let sink = LocalSink(s, pl);
+                    typed_left!(a, |a| typed_right!(b, |b| arith_into(op, a, b, vs, sink)))
+                }
+                sink => typed_left!(a, |a| typed_right!(b, |b| arith_into(op, a, b, vs, sink))),
             }
         }
         ExprKind::NumModDivK(a, k, is_mod) => {
-            let (a, d) = (opnd(cx, a), super::DivK::new(*k));
-            // One closure for MOD and one for DIV: the choice is made here, not per run.
-            macro_rules! modk {
-                ($m:literal) => {
-                    Box::new(move |it, c| {
-                        let x = a.get(it, c);
-                        let x = it.mod_div_c(x, &d, $m, vs);
-                        finish(it, c, &sink, x, vs)
-                    })
-                };
-            }
-            match is_mod {
-                true => modk!(true),
-                false => modk!(false),
+            let (a, d, m) = (opnd(cx, a), super::DivK::new(*k), *is_mod);
+            match sink {
+                Sink::Local(s, pl) => {
+                    let sink = LocalSink(s, pl);
+                    typed_right!(a, |a| modk_into(a, d, m, vs, sink))
+                }
+                sink => typed_right!(a, |a| modk_into(a, d, m, vs, sink)),
             }
         }
         _ => {
-            let f: NumFn = num(cx, value);
-            Box::new(move |it, c| {
-                let x = f(it, c);
-                finish(it, c, &sink, x, vs)
-            })
+            // A constant or a local is read by the statement itself; anything else is its
+            // own closure.
+            let a = opnd(cx, value);
+            match sink {
+                Sink::Local(s, pl) => {
+                    let sink = LocalSink(s, pl);
+                    typed_right!(a, |a| copy_into(a, vs, sink))
+                }
+                sink => typed_right!(a, |a| copy_into(a, vs, sink)),
+            }
         }
     }
 }
 
-fn arith_into<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span, sink: Sink) -> StmtFn {
+/// `a` stored into `sink`.
+fn copy_into<A: Src, P: Put>(a: A, vs: Span, sink: P) -> StmtFn {
+    Box::new(move |it, c| {
+        let x = a.get(it, c);
+        finish(it, c, &sink, x, vs)
+    })
+}
+
+/// `a MOD k` (`is_mod`) or `a DIV k` stored into `sink`.
+fn modk_into<A: Src, P: Put>(a: A, d: super::DivK, is_mod: bool, vs: Span, sink: P) -> StmtFn {
+    // One closure for MOD and one for DIV: the choice is made here, not per run.
+    macro_rules! modk {
+        ($m:literal) => {
+            Box::new(move |it, c| {
+                let x = a.get(it, c);
+                let x = it.mod_div_c(x, &d, $m, vs);
+                finish(it, c, &sink, x, vs)
+            })
+        };
+    }
+    match is_mod {
+        true => modk!(true),
+        false => modk!(false),
+    }
+}
+
+fn arith_into<A: Src, B: Src, P: Put>(op: BinOp, a: A, b: B, span: Span, sink: P) -> StmtFn {
     macro_rules! op {
         (|$it:ident, $x:ident, $y:ident| $body:expr) => {
             Box::new(move |it: &mut Interp, c: &Code| {

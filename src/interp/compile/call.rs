@@ -20,6 +20,9 @@ pub(crate) struct CCall {
     /// What a call adds to the task's data, when no argument decides it (no array value
     /// parameter).
     values: Option<u64>,
+    /// Every argument is a `num` for a value parameter ([`CArg::Num`]): they are pushed
+    /// without looking at the parameters.
+    all_num: bool,
 }
 
 /// A compiled argument, for the callee's parameter at the same index.
@@ -38,7 +41,7 @@ enum CArg {
 impl CCall {
     pub(crate) fn new(cx: &Cx, rid: RoutineId, args: &[Arg], span: Span) -> CCall {
         let r = cx.p.routine(rid);
-        let cargs = r
+        let cargs: Box<[CArg]> = r
             .params
             .iter()
             .zip(args.iter())
@@ -54,11 +57,17 @@ impl CCall {
             })
             .collect();
         let fd = super::FrameData::of(cx.p, r);
+        let all_num = r.params.len() == cargs.len()
+            && r.params
+                .iter()
+                .all(|q| matches!(q.slot, ParamSlot::Value(_)))
+            && cargs.iter().all(|a| matches!(a, CArg::Num(..)));
         CCall {
             rid,
             args: cargs,
             span,
             values: fd.arrays.is_empty().then_some(fd.fixed),
+            all_num,
         }
     }
 }
@@ -71,6 +80,24 @@ impl Interp {
         let r = p.routine(call.rid);
         let bp = self.sp;
         let rbp = self.refs.len();
+        if call.all_num {
+            for arg in call.args.iter() {
+                if let CArg::Num(o, span) = arg {
+                    let x = o.get(self, c);
+                    if x.is_nan() {
+                        self.sp = bp;
+                        return Err(self.take_pending(*span));
+                    }
+                    self.push_num(x);
+                }
+            }
+            let cr = c.routines.get(call.rid.0 as usize);
+            let values = match call.values {
+                Some(v) => v,
+                None => self.frame_values(c, call.rid, bp),
+            };
+            return self.enter_with(c, (call.rid, r, cr), values, bp, rbp, call.span);
+        }
         for (param, arg) in r.params.iter().zip(call.args.iter()) {
             let res = match (param.slot, arg) {
                 (_, CArg::Num(o, span)) => {

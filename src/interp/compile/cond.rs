@@ -2,9 +2,10 @@
 //! (both operands always evaluated), `NOT`, constants and `bool` locals; anything else runs
 //! on the tree-walking path.
 
-use super::num::{Konst, Src, opnd};
+use super::num::{Src, opnd, typed_left, typed_right};
 use super::{BoolFn, Code, Cx};
 use crate::interp::Interp;
+use crate::interp::error::Exec;
 use crate::interp::value::Value;
 use crate::ir::{BinOp, Expr, ExprKind, UnOp};
 use crate::source::Span;
@@ -17,22 +18,9 @@ pub(crate) fn cond(cx: &Cx, e: &Expr) -> BoolFn {
             Box::new(move |_, _| Ok(b))
         }
         ExprKind::Binary(
-            op @ (BinOp::NumLt
-            | BinOp::NumLe
-            | BinOp::NumGt
-            | BinOp::NumGe
-            | BinOp::NumEq
-            | BinOp::NumNe),
-            a,
-            b,
-        ) => {
-            let (sa, sb) = (a.span, b.span);
-            let b = opnd(cx, b);
-            match b.konst() {
-                Some(k) => cmp(*op, opnd(cx, a), sa, Konst(k), sb),
-                None => cmp(*op, opnd(cx, a), sa, b, sb),
-            }
-        }
+            BinOp::NumLt | BinOp::NumLe | BinOp::NumGt | BinOp::NumGe | BinOp::NumEq | BinOp::NumNe,
+            ..,
+        ) => with_cond(cx, e, Boxed),
         ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
             let (a, b) = (cond(cx, a), cond(cx, b));
             macro_rules! logic {
@@ -81,29 +69,96 @@ fn fallback(e: &Expr) -> BoolFn {
     Box::new(move |it, c| it.eval_bool(&c.prog, &e))
 }
 
-/// A `num` comparison (a failing operand raises its error at the operand's span).
-fn cmp<A: Src, B: Src>(op: BinOp, a: A, sa: Span, b: B, sb: Span) -> BoolFn {
+/// A compiled condition of a known type (see [`with_cond`]).
+pub(crate) trait Cond: Send + Sync + 'static {
+    /// Whether the condition holds.
+    fn test(&self, it: &mut Interp, c: &Code) -> Exec<bool>;
+}
+
+impl Cond for BoolFn {
+    #[inline(always)]
+    fn test(&self, it: &mut Interp, c: &Code) -> Exec<bool> {
+        self(it, c)
+    }
+}
+
+/// What is built from a condition, for the condition's own type: a statement testing a
+/// comparison of locals and constants is compiled for exactly that comparison.
+pub(crate) trait WithCond {
+    /// What is built.
+    type Out;
+    /// Build it around `cond`.
+    fn with<C: Cond>(self, cond: C) -> Self::Out;
+}
+
+/// The condition itself, as a closure.
+struct Boxed;
+
+impl WithCond for Boxed {
+    type Out = BoolFn;
+    fn with<C: Cond>(self, cond: C) -> BoolFn {
+        Box::new(move |it, c| cond.test(it, c))
+    }
+}
+
+/// The comparison operators of [`Cmp`].
+const LT: u8 = 0;
+const LE: u8 = 1;
+const GT: u8 = 2;
+const GE: u8 = 3;
+const EQ: u8 = 4;
+const NE: u8 = 5;
+
+/// A `num` comparison `a OP b` (a failing operand raises its error at the operand's span).
+pub(crate) struct Cmp<A, B, const OP: u8> {
+    a: A,
+    sa: Span,
+    b: B,
+    sb: Span,
+}
+
+impl<A: Src, B: Src, const OP: u8> Cond for Cmp<A, B, OP> {
+    #[inline(always)]
+    fn test(&self, it: &mut Interp, c: &Code) -> Exec<bool> {
+        let x = self.a.get(it, c);
+        if A::FALLIBLE && x.is_nan() {
+            return Err(it.take_pending(self.sa));
+        }
+        let y = self.b.get(it, c);
+        if B::FALLIBLE && y.is_nan() {
+            return Err(it.take_pending(self.sb));
+        }
+        Ok(match OP {
+            LT => x < y,
+            LE => x <= y,
+            GT => x > y,
+            GE => x >= y,
+            EQ => x == y,
+            _ => x != y,
+        })
+    }
+}
+
+/// `w` built around condition `e`: a `num` comparison with its operands typed (locals,
+/// constants, `MOD`/`DIV` of a local by a constant), anything else as a closure.
+pub(crate) fn with_cond<W: WithCond>(cx: &Cx, e: &Expr, w: W) -> W::Out {
+    let ExprKind::Binary(op, a, b) = &e.kind else {
+        return w.with(cond(cx, e));
+    };
+    let (sa, sb) = (a.span, b.span);
     macro_rules! cmp {
-        (|$x:ident, $y:ident| $body:expr) => {
-            Box::new(move |it: &mut Interp, c: &Code| {
-                let $x = a.get(it, c);
-                if A::FALLIBLE && $x.is_nan() {
-                    return Err(it.take_pending(sa));
-                }
-                let $y = b.get(it, c);
-                if B::FALLIBLE && $y.is_nan() {
-                    return Err(it.take_pending(sb));
-                }
-                Ok($body)
-            })
+        ($op:expr) => {
+            typed_left!(opnd(cx, a), |a| typed_right!(opnd(cx, b), |b| w
+                .with(Cmp::<_, _, { $op }> { a, sa, b, sb })))
         };
     }
     match op {
-        BinOp::NumLt => cmp!(|x, y| x < y),
-        BinOp::NumLe => cmp!(|x, y| x <= y),
-        BinOp::NumGt => cmp!(|x, y| x > y),
-        BinOp::NumGe => cmp!(|x, y| x >= y),
-        BinOp::NumEq => cmp!(|x, y| x == y),
-        _ => cmp!(|x, y| x != y),
+        BinOp::NumLt => cmp!(LT),
+        BinOp::NumLe => cmp!(LE),
+        BinOp::NumGt => cmp!(GT),
+        BinOp::NumGe => cmp!(GE),
+        BinOp::NumEq => cmp!(EQ),
+        BinOp::NumNe => cmp!(NE),
+        _ => w.with(cond(cx, e)),
     }
 }

@@ -1,8 +1,9 @@
 //! Running compiled blocks, FOR and TEST on the skeleton they share with the tree-walking
 //! engine (`Interp::run_block`, `Interp::for_loop`, `Interp::test_case` in `stmt.rs`).
 
+use super::cond::{Cond, WithCond};
 use super::val::StrPart;
-use super::{CBlock, Code, NumFn};
+use super::{CBlock, Code, NumFn, StmtFn};
 use crate::interp::Interp;
 use crate::interp::error::Exec;
 use crate::ir::Expr;
@@ -18,6 +19,47 @@ pub(crate) struct CFor {
     pub span: Span,
     /// `FOR i FROM a TO b [STEP c]`: where an iteration of an empty body is counted.
     pub head: Span,
+}
+
+/// A WHILE loop with a body, compiled around its condition's type.
+pub(crate) struct While {
+    pub body: CBlock,
+}
+
+impl WithCond for While {
+    type Out = StmtFn;
+    fn with<C: Cond>(self, cond: C) -> StmtFn {
+        let body = self.body;
+        Box::new(move |it, c| {
+            while cond.test(it, c)? {
+                it.exec_cblock(c, &body)?;
+            }
+            Ok(())
+        })
+    }
+}
+
+/// An IF with one condition (and maybe an ELSE), compiled around the condition's type.
+pub(crate) struct If {
+    pub then: CBlock,
+    pub else_body: Option<CBlock>,
+}
+
+impl WithCond for If {
+    type Out = StmtFn;
+    fn with<C: Cond>(self, cond: C) -> StmtFn {
+        let then = self.then;
+        match self.else_body {
+            Some(other) => Box::new(move |it, c| match cond.test(it, c)? {
+                true => it.exec_cblock(c, &then),
+                false => it.exec_cblock(c, &other),
+            }),
+            None => Box::new(move |it, c| match cond.test(it, c)? {
+                true => it.exec_cblock(c, &then),
+                false => Ok(()),
+            }),
+        }
+    }
 }
 
 /// A compiled TEST: the subject and the case values, the bodies compiled.

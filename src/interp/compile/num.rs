@@ -83,16 +83,6 @@ pub(crate) enum Opnd {
     D(NumFn),
 }
 
-impl Opnd {
-    /// The constant this operand is, if it is one.
-    pub(crate) fn konst(&self) -> Option<f32> {
-        match self {
-            Opnd::V(Leaf::K(x)) => Some(*x),
-            _ => None,
-        }
-    }
-}
-
 /// Something a compiled operation reads a `num` from.
 pub(crate) trait Src: Send + Sync + 'static {
     /// Whether `get` can fail (return NaN).
@@ -139,6 +129,88 @@ impl Src for Opnd {
         }
     }
 }
+
+/// A local slot read inline, as its own type: an operation on it is compiled for exactly
+/// this operand (no run-time choice of the operand's kind).
+pub(crate) struct LocalSrc(pub u32, pub Span);
+
+impl Src for LocalSrc {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match it.stack.get(it.bp + self.0 as usize) {
+            Some(Value::Num(x)) => *x,
+            _ => it.leaf_slow(c, ExprKind::Local(self.0), self.1),
+        }
+    }
+}
+
+/// `a MOD k` (`MOD` true) or `a DIV k` of a typed operand and a constant integer `k`.
+pub(crate) struct ModDivSrc<A, const MOD: bool>(pub A, pub DivK, pub Span);
+
+impl<A: Src, const MOD: bool> Src for ModDivSrc<A, MOD> {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        let x = self.0.get(it, c);
+        it.mod_div_c(x, &self.1, MOD, self.2)
+    }
+}
+
+/// `$body` with `$a` bound to operand `$o` as a typed source when it is a local, or `a MOD k`
+/// / `a DIV k` of a local (the left operand of comparisons and arithmetic), else as itself.
+macro_rules! typed_left {
+    ($o:expr, |$a:ident| $body:expr) => {
+        match $o {
+            $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::L(s, sp)) => {
+                let $a = $crate::interp::compile::num::LocalSrc(s, sp);
+                $body
+            }
+            $crate::interp::compile::num::Opnd::M(m) => match *m {
+                ($crate::interp::compile::num::Leaf::L(s, sp), d, true, span) => {
+                    let src = $crate::interp::compile::num::LocalSrc(s, sp);
+                    let $a = $crate::interp::compile::num::ModDivSrc::<_, true>(src, d, span);
+                    $body
+                }
+                ($crate::interp::compile::num::Leaf::L(s, sp), d, false, span) => {
+                    let src = $crate::interp::compile::num::LocalSrc(s, sp);
+                    let $a = $crate::interp::compile::num::ModDivSrc::<_, false>(src, d, span);
+                    $body
+                }
+                other => {
+                    let $a = $crate::interp::compile::num::Opnd::M(Box::new(other));
+                    $body
+                }
+            },
+            o => {
+                let $a = o;
+                $body
+            }
+        }
+    };
+}
+
+/// `$body` with `$b` bound to operand `$o` as a constant or a local when it is one (the right
+/// operand of comparisons and arithmetic), else as itself.
+macro_rules! typed_right {
+    ($o:expr, |$b:ident| $body:expr) => {
+        match $o {
+            $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::K(k)) => {
+                let $b = $crate::interp::compile::num::Konst(k);
+                $body
+            }
+            $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::L(s, sp)) => {
+                let $b = $crate::interp::compile::num::LocalSrc(s, sp);
+                $body
+            }
+            o => {
+                let $b = o;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use {typed_left, typed_right};
 
 /// `a` then `b` (stopping at the first failure), then `f` on both values.
 #[inline(always)]
@@ -350,10 +422,7 @@ fn fallback(e: &Expr) -> NumFn {
 /// `a op b` for a `num` arithmetic operator (a constant right operand is read without
 /// checks).
 fn arith(op: BinOp, a: Opnd, b: Opnd, span: Span) -> NumFn {
-    match b.konst() {
-        Some(k) => arith_t(op, a, Konst(k), span),
-        None => arith_t(op, a, b, span),
-    }
+    typed_left!(a, |a| typed_right!(b, |b| arith_t(op, a, b, span)))
 }
 
 fn arith_t<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span) -> NumFn {
