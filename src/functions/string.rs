@@ -124,6 +124,24 @@ pub fn str_part(s: &str, pos: i64, len: i64) -> RtResult<String> {
         .collect())
 }
 
+/// `StrPart(text, p, l)` of ASCII text within its bounds: a slice (anything else goes to the
+/// walk over characters of [`str_part`], and its errors).
+///
+/// Only the bytes up to the end of the part need to be ASCII: then they are as many
+/// characters, and the part's character positions are its byte positions.
+#[inline(always)]
+pub fn ascii_part(text: &str, p: i64, l: i64) -> Option<&str> {
+    if p < 1 || l < 0 {
+        return None;
+    }
+    let end = usize::try_from(p.checked_add(l - 1)?).ok()?;
+    let head = text.as_bytes().get(..end)?;
+    if !head.is_ascii() {
+        return None;
+    }
+    text.get((p - 1) as usize..end)
+}
+
 /// `StrFind(Str, ChPos, Set [\NotInSet])`: the position of the first character at or after
 /// `pos` that is in `set` (or, with `not_in_set`, not in it); `StrLen + 1` when none.
 pub fn str_find(s: &str, pos: i64, set: &str, not_in_set: bool) -> RtResult<usize> {
@@ -143,15 +161,14 @@ pub fn str_find(s: &str, pos: i64, set: &str, not_in_set: bool) -> RtResult<usiz
 pub fn str_match(s: &str, pos: i64, pattern: &str) -> RtResult<usize> {
     let n = str_len(s);
     let start = start_index("StrMatch", pos, n)?;
-    let chars: Vec<char> = s.chars().collect();
-    let pat: Vec<char> = pattern.chars().collect();
-    if pat.is_empty() {
-        return Ok(start + 1);
-    }
-    let found = chars
-        .get(start..)
-        .and_then(|tail| tail.windows(pat.len()).position(|w| w == pat.as_slice()))
-        .map(|i| start + i + 1);
+    // The text from character `start` on; a match of the pattern's bytes starts at a
+    // character boundary (the pattern is whole characters), so counting the characters
+    // before it gives its position.
+    let from = s.char_indices().nth(start).map_or(s.len(), |(b, _)| b);
+    let tail = s.get(from..).unwrap_or("");
+    let found = tail
+        .find(pattern)
+        .map(|b| start + tail.get(..b).map_or(0, str_len) + 1);
     Ok(found.unwrap_or(n + 1))
 }
 
@@ -360,6 +377,13 @@ mod tests {
         assert_eq!(str_match("abc", 2, "").unwrap(), 2);
         assert_eq!(str_match("abc", 1, "abcd").unwrap(), 4);
         assert_eq!(str_match("", 1, "a").unwrap(), 1);
+        assert_eq!(
+            str_match("äbäb", 2, "äb").unwrap(),
+            3,
+            "positions count characters"
+        );
+        assert_eq!(str_match("ääx", 3, "x").unwrap(), 3);
+        assert_eq!(str_match("ää", 3, "").unwrap(), 3);
         assert_eq!(
             str_match("abc", 9, "a").unwrap_err().err_name(),
             "ERR_OUTOFBND"

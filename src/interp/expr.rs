@@ -15,7 +15,7 @@ impl Interp {
             ExprKind::Num(x) => Ok(Value::Num(*x)),
             ExprKind::Dnum(x) => Ok(Value::Dnum(*x)),
             ExprKind::Bool(b) => Ok(Value::Bool(*b)),
-            ExprKind::Str(s) => Ok(Value::Str(s.into())),
+            ExprKind::Str(s) => Ok(Value::str(s)),
             ExprKind::Local(s) => {
                 let (bp, _) = self.bases();
                 match self.stack.get(bp + *s as usize) {

@@ -164,4 +164,65 @@ MODULE strings
     ENDTEST
     Assert hit = 3;
   ENDPROC
+
+  PROC test_append_that_fails_keeps_the_old_text()
+    VAR string s := "ab";
+    VAR string t := "xy";
+    VAR string long := "0123456789012345678901234567890123456789012345678901234567890123456789012345";
+    VAR num tries := 0;
+    s := s + "c" + StrPart(t, 5, 1);
+    Assert tries = 1;
+    Assert s = "abcw" \Msg:="the retried append happened once";
+    s := s + "!" + long;
+    Assert FALSE \Msg:="not reached";
+  ERROR
+    tries := tries + 1;
+    IF tries = 1 THEN
+      Assert ERRNO = ERR_OUTOFBND;
+      Assert s = "ab" \Msg:="a failed StrPart leaves the appended-to string as it was";
+      t := "xyzvw";
+      RETRY;
+    ENDIF
+    Assert ERRNO = ERR_STRTOOLNG;
+    Assert s = "abcw" \Msg:="a too long result leaves the string as it was";
+  ENDPROC
+
+  FUNC string rewrites_shared_g()
+    shared_g := "changed";
+    RETURN "r";
+  ENDFUNC
+
+  PROC test_append_reads_the_string_before_the_other_operands()
+    VAR string s := "ab";
+    VAR string t;
+    s := s + NumToStr(StrLen(s), 0) + StrPart(s, 1, 1);
+    Assert s = "ab2a" \Msg:="the operands read the string as it was";
+    t := s;
+    s := s + s;
+    Assert s = "ab2aab2a";
+    Assert t = "ab2a";
+    shared_g := "a";
+    shared_g := shared_g + rewrites_shared_g();
+    Assert shared_g = "ar" \Msg:="the string is read before a function changes it";
+    shared_g := "a";
+    shared_g := shared_g + "b" + rewrites_shared_g() + shared_g;
+    Assert shared_g = "abrchanged";
+  ENDPROC
+
+  PROC test_append_to_a_copy_in_a_loop()
+    VAR string s := "";
+    VAR string snaps{3};
+    FOR i FROM 1 TO 3 DO
+      s := s + NumToStr(i, 0) + ",";
+      snaps{i} := s;
+    ENDFOR
+    s := s + "end";
+    Assert snaps{1} = "1," \Msg:="each copy keeps the text it was given";
+    Assert snaps{2} = "1,2,";
+    Assert snaps{3} = "1,2,3,";
+    Assert s = "1,2,3,end";
+    shared_p := "p";
+    shared_p := shared_p + "1" + NumToStr(2, 0);
+    Assert shared_p = "p12" \Msg:="a PERS appended in place";
+  ENDPROC
 ENDMODULE

@@ -17,13 +17,8 @@ pub(super) fn register(r: &mut Registry) {
             let len = cx.int(2, "Len")?;
             let text = cx.str(0)?;
             // ASCII text (the usual case): the part is a slice of the same bytes.
-            if text.is_ascii()
-                && pos >= 1
-                && len >= 0
-                && pos.saturating_add(len - 1) <= text.len() as i64
-            {
-                let from = (pos - 1) as usize;
-                return Ok(Value::str(&text[from..from + len as usize]));
+            if let Some(part) = s::ascii_part(text, pos, len) {
+                return Ok(Value::str(part));
             }
             let out = s::str_part(text, pos, len).map_err(|e| cx.rt(e))?;
             cx.string(out)

@@ -4,7 +4,7 @@
 //! come from their compiled form, and no argument list is built. Arguments are evaluated in order first, then checked with the same errors as
 //! the natives in `builtins/` (what the differential test holds them to).
 
-use super::num::num;
+use super::num::{Leaf, num};
 use super::val::{StrPart, TextFn, ValFn};
 use super::{Code, Cx, NumFn};
 use crate::interp::Interp;
@@ -14,18 +14,57 @@ use crate::interp::value::Value;
 use crate::ir::{Arg, Expr, NativeId, Ty};
 use crate::source::Span;
 
-/// `StrLen(s)` as a `num` (NaN: an error is pending), when `n` is the standard `StrLen`.
-pub(crate) fn str_len(cx: &Cx, n: NativeId, args: &[Arg]) -> Option<NumFn> {
-    let [Arg::Value(s)] = args else {
-        return None;
+/// `StrLen(s)`, `StrFind(s, p, set [\NotInSet])` or `StrMatch(s, p, pattern)` as a `num`
+/// (NaN: an error is pending), when `n` is one of those and standard. The strings are read
+/// in place; `StrFind` and `StrMatch` only when reading them cannot fail and their position
+/// has no side effects (so the order their arguments are read in does not matter).
+pub(crate) fn str_num(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<NumFn> {
+    let name = cx.standard_native(n)?;
+    if name == "StrLen" {
+        let [Arg::Value(s)] = args else {
+            return None;
+        };
+        if cx.expr_ty(s) != Some(Ty::STRING) {
+            return None;
+        }
+        let s = StrPart::new(cx, s);
+        return Some(Box::new(move |it, c| {
+            match s.with(it, c, |t| crate::functions::string::str_len(t) as f32) {
+                Ok(x) => x,
+                Err(u) => it.fail_nf(u),
+            }
+        }));
+    }
+    type Search = fn(&str, i64, &str, bool) -> crate::functions::RtResult<usize>;
+    let (search, not_in_set): (Search, bool) = match (name, args) {
+        ("StrFind", [_, _, _, Arg::Absent]) => (crate::functions::string::str_find, false),
+        ("StrFind", [_, _, _, Arg::Switch]) => (crate::functions::string::str_find, true),
+        ("StrMatch", [_, _, _]) => (
+            |s, p, pat, _| crate::functions::string::str_match(s, p, pat),
+            false,
+        ),
+        _ => return None,
     };
-    if cx.standard_native(n)? != "StrLen" || cx.expr_ty(s) != Some(Ty::STRING) {
+    let (s, pos, set) = (
+        value_arg(args, 0)?,
+        value_arg(args, 1)?,
+        value_arg(args, 2)?,
+    );
+    if cx.expr_ty(s) != Some(Ty::STRING)
+        || cx.expr_ty(set) != Some(Ty::STRING)
+        || !cx.is_num(pos)
+        || !(cx.plain_read(s) && cx.plain_read(set) && super::simple::pure(pos))
+    {
         return None;
     }
-    let s = StrPart::new(cx, s);
+    let (s, set) = (StrPart::new(cx, s), StrPart::new(cx, set));
+    let pos = NumArg::new(cx, pos);
     Some(Box::new(move |it, c| {
-        match s.with(it, c, |t| crate::functions::string::str_len(t) as f32) {
-            Ok(x) => x,
+        let r = it.str_search(c, &s, &pos, &set, span, |t, p, k| {
+            search(t, p, k, not_in_set)
+        });
+        match r {
+            Ok(i) => i as f32,
             Err(u) => it.fail_nf(u),
         }
     }))
@@ -102,8 +141,8 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
         }));
     }
     match name {
-        "StrLen" => {
-            let f = str_len(cx, n, args)?;
+        "StrLen" | "StrFind" | "StrMatch" => {
+            let f = str_num(cx, n, args, span)?;
             Some(Box::new(move |it, c| {
                 let x = f(it, c);
                 if x.is_nan() {
@@ -117,7 +156,7 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
             // change it).
             let (s, pos, len) = str_part_args(cx, args)?;
             let s = StrPart::new(cx, s);
-            let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
+            let (pos, len) = (NumArg::new(cx, pos), NumArg::new(cx, len));
             Some(Box::new(move |it, c| it.str_part(c, &s, &pos, &len, span)))
         }
         _ => {
@@ -129,6 +168,21 @@ pub(crate) fn value(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Va
                 }
                 Ok(Value::Num(x))
             }))
+        }
+    }
+}
+
+/// A `num` argument: a constant or a variable read inline, anything else compiled.
+pub(crate) enum NumArg {
+    Leaf(Leaf, Span),
+    Fn(NumFn, Span),
+}
+
+impl NumArg {
+    fn new(cx: &Cx, e: &Expr) -> NumArg {
+        match Leaf::of(cx, e) {
+            Some(l @ (Leaf::K(_) | Leaf::L(..) | Leaf::G(..))) => NumArg::Leaf(l, e.span),
+            _ => NumArg::Fn(num(cx, e), e.span),
         }
     }
 }
@@ -165,7 +219,7 @@ pub(crate) fn text(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Tex
                 return None;
             }
             let s = StrPart::new(cx, s);
-            let (pos, len) = ((num(cx, pos), pos.span), (num(cx, len), len.span));
+            let (pos, len) = (NumArg::new(cx, pos), NumArg::new(cx, len));
             Some(Box::new(move |it, c, buf| {
                 let (p, l) = (it.num_arg(c, &pos)?, it.num_arg(c, &len)?);
                 let (p, l) = (it.int_arg(p, "ChPos", span)?, it.int_arg(l, "Len", span)?);
@@ -184,13 +238,13 @@ pub(crate) fn text(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Tex
             {
                 return None;
             }
-            let (x, dec) = ((num(cx, x), x.span), (num(cx, dec), dec.span));
+            let (x, dec) = (NumArg::new(cx, x), NumArg::new(cx, dec));
             Some(Box::new(move |it, c, buf| {
                 let (xv, d) = (it.num_arg(c, &x)?, it.num_arg(c, &dec)?);
                 let d = it.int_arg(d, "Dec", span)?.clamp(-1, 99) as i32;
                 let mut digits = [0u8; 12];
                 match whole_digits(xv, d, &mut digits) {
-                    Some(t) => buf.push_str(t),
+                    Some(t) => push_ascii(buf, t),
                     None => buf.push_str(&it.num_to_str(xv, d, span)?),
                 }
                 Ok(())
@@ -200,16 +254,9 @@ pub(crate) fn text(cx: &Cx, n: NativeId, args: &[Arg], span: Span) -> Option<Tex
     }
 }
 
-/// `StrPart(text, p, l)` of ASCII text within its bounds: a slice (anything else goes to the
-/// runtime library's walk over characters, and its errors).
-fn ascii_part(text: &str, p: i64, l: i64) -> Option<&str> {
-    (text.is_ascii() && p >= 1 && l >= 0 && p.saturating_add(l - 1) <= text.len() as i64)
-        .then(|| &text[(p - 1) as usize..(p - 1 + l) as usize])
-}
-
 /// `StrPart(text, p, l)` with integer arguments.
 fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
-    match ascii_part(text, p, l) {
+    match crate::functions::string::ascii_part(text, p, l) {
         Some(t) => Ok(Value::str(t)),
         None => crate::functions::string::str_part(text, p, l).map(|out| Value::Str(out.into())),
     }
@@ -217,21 +264,31 @@ fn part(text: &str, p: i64, l: i64) -> crate::functions::RtResult<Value> {
 
 /// [`part`] appended to `buf`.
 fn part_into(text: &str, p: i64, l: i64, buf: &mut String) -> crate::functions::RtResult<()> {
-    match ascii_part(text, p, l) {
+    match crate::functions::string::ascii_part(text, p, l) {
         Some(t) => buf.push_str(t),
         None => buf.push_str(&crate::functions::string::str_part(text, p, l)?),
     }
     Ok(())
 }
 
+/// Append ASCII bytes (digits, a sign) to `buf` (no UTF-8 check of the bytes as a whole).
+#[inline(always)]
+fn push_ascii(buf: &mut String, bytes: &[u8]) {
+    buf.reserve(bytes.len());
+    for &b in bytes {
+        buf.push(char::from(b));
+    }
+}
+
 /// `NumToStr(x, 0)` of an integer below 2^24 in magnitude (the text `int_to_str` writes),
-/// written into `buf` (`dec` must be 0).
-fn whole_digits(x: f32, dec: i32, buf: &mut [u8; 12]) -> Option<&str> {
-    if dec != 0 || x.fract() != 0.0 || x.abs() >= 16_777_216.0 {
+/// written into `buf` (`dec` must be 0): its ASCII bytes.
+fn whole_digits(x: f32, dec: i32, buf: &mut [u8; 12]) -> Option<&[u8]> {
+    let i = crate::interp::value::f32_int(x)?;
+    if dec != 0 || i.unsigned_abs() >= 16_777_216 {
         return None;
     }
     let mut k = buf.len();
-    let mut n = (x as i32).unsigned_abs();
+    let mut n = i.unsigned_abs();
     loop {
         k -= 1;
         buf[k] = b'0' + (n % 10) as u8;
@@ -240,26 +297,41 @@ fn whole_digits(x: f32, dec: i32, buf: &mut [u8; 12]) -> Option<&str> {
             break;
         }
     }
-    if (x as i32) < 0 {
+    if i < 0 {
         k -= 1;
         buf[k] = b'-';
     }
-    std::str::from_utf8(&buf[k..]).ok()
+    buf.get(k..)
 }
 
 impl Interp {
     /// An evaluated `num` argument.
     #[inline(always)]
-    fn num_arg(&mut self, c: &Code, (f, span): &(NumFn, Span)) -> Exec<f32> {
-        let x = f(self, c);
+    fn num_arg(&mut self, c: &Code, a: &NumArg) -> Exec<f32> {
+        let (x, span) = match a {
+            NumArg::Leaf(l, span) => (l.get(self, c), *span),
+            NumArg::Fn(f, span) => (f(self, c), *span),
+        };
         if x.is_nan() {
-            return Err(self.take_pending(*span));
+            return Err(self.take_pending(span));
         }
         Ok(x)
     }
 
     /// An integer argument of a native called at `span` (as `Ctx::int`).
+    #[inline(always)]
     fn int_arg(&self, x: f32, what: &str, span: Span) -> Exec<i64> {
+        // A whole number within i32 (every position and length a program uses) without
+        // the floating-point `fract` (a library call on this target).
+        if let Some(i) = crate::interp::value::f32_int(x) {
+            return Ok(i as i64);
+        }
+        self.int_arg_slow(x, what, span)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn int_arg_slow(&self, x: f32, what: &str, span: Span) -> Exec<i64> {
         let x = x as f64;
         if x.fract() != 0.0 || !x.is_finite() {
             return Err(self.error(
@@ -271,12 +343,41 @@ impl Interp {
         Ok(x as i64)
     }
 
+    /// A search `f(text, position, set)` of `StrFind` / `StrMatch` (the set read in place
+    /// when it is a constant, else copied first).
+    #[inline(always)]
+    fn str_search(
+        &mut self,
+        c: &Code,
+        s: &StrPart,
+        pos: &NumArg,
+        set: &StrPart,
+        span: Span,
+        f: impl Fn(&str, i64, &str) -> crate::functions::RtResult<usize>,
+    ) -> Exec<usize> {
+        let p = self.num_arg(c, pos)?;
+        let p = self.int_arg(p, "ChPos", span)?;
+        let r = match set {
+            StrPart::Lit(k) => s.with(self, c, |t| f(t, p, k))?,
+            _ => {
+                let mut k = self.strbufs.pop().unwrap_or_default();
+                k.clear();
+                let r = set
+                    .with(self, c, |t| k.push_str(t))
+                    .and_then(|()| s.with(self, c, |t| f(t, p, &k)));
+                self.strbufs.push(k);
+                r?
+            }
+        };
+        r.map_err(|e| self.rt_error(e, span))
+    }
+
     fn str_part(
         &mut self,
         c: &Code,
         s: &StrPart,
-        pos: &(NumFn, Span),
-        len: &(NumFn, Span),
+        pos: &NumArg,
+        len: &NumArg,
         span: Span,
     ) -> Exec<Value> {
         // The text is read before the other arguments are evaluated.
@@ -323,7 +424,7 @@ mod tests {
     use super::whole_digits;
 
     fn whole_text(x: f32) -> Option<String> {
-        whole_digits(x, 0, &mut [0u8; 12]).map(String::from)
+        whole_digits(x, 0, &mut [0u8; 12]).map(|b| String::from_utf8_lossy(b).into_owned())
     }
 
     /// The stack-written text of a whole number is the one `NumToStr(x, 0)` writes.

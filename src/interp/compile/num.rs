@@ -29,7 +29,7 @@ pub(crate) enum Leaf {
 
 impl Leaf {
     /// The leaf for `e`, if it is one.
-    fn of(cx: &Cx, e: &Expr) -> Option<Leaf> {
+    pub(crate) fn of(cx: &Cx, e: &Expr) -> Option<Leaf> {
         Some(match &e.kind {
             ExprKind::Num(x) => Leaf::K(*x),
             ExprKind::Local(s) => Leaf::L(*s, e.span),
@@ -45,7 +45,7 @@ impl Leaf {
 
     /// The value (NaN: an error is pending).
     #[inline(always)]
-    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+    pub(crate) fn get(&self, it: &mut Interp, c: &Code) -> f32 {
         match self {
             Leaf::K(x) => *x,
             Leaf::L(s, span) => match it.stack.get(it.bp + *s as usize) {
@@ -396,8 +396,8 @@ pub(crate) fn num(cx: &Cx, e: &Expr) -> NumFn {
                 })
             }
         }
-        ExprKind::Native(n, args) if super::natives::str_len(cx, *n, args).is_some() => {
-            super::natives::str_len(cx, *n, args).unwrap_or_else(|| fallback(e))
+        ExprKind::Native(n, args) if super::natives::str_num(cx, *n, args, span).is_some() => {
+            super::natives::str_num(cx, *n, args, span).unwrap_or_else(|| fallback(e))
         }
         ExprKind::Native(n, args) if super::natives::math(cx, *n, args, span).is_some() => {
             super::natives::math(cx, *n, args, span).unwrap_or_else(|| fallback(e))

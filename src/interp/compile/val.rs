@@ -219,20 +219,68 @@ impl StrPart {
 pub(crate) type Parts = Box<[(StrPart, Span)]>;
 
 fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
+    concat_spine(e)
+        .into_iter()
+        .map(|(b, span)| (StrPart::new(cx, b), span))
+        .collect()
+}
+
+/// The operand expressions of `a + b + c …` in order, each with the span of the `+` it
+/// completes (the first with its own span).
+fn concat_spine(e: &Expr) -> Vec<(&Expr, Span)> {
     let mut spine = Vec::new();
     let mut cur = e;
     while let ExprKind::Binary(BinOp::Concat, a, b) = &cur.kind {
         spine.push((b.as_ref(), cur.span));
         cur = a;
     }
-    let mut parts = vec![(StrPart::new(cx, cur), cur.span)];
-    parts.extend(
-        spine
-            .into_iter()
-            .rev()
-            .map(|(b, span)| (StrPart::new(cx, b), span)),
-    );
-    parts.into()
+    spine.push((cur, cur.span));
+    spine.reverse();
+    spine
+}
+
+/// Does evaluating `e` change nothing (no call other than a standard string or number
+/// function, no signal) and read neither `root` nor a reference parameter (which could
+/// be `root` under another name)?
+fn leaves_alone(cx: &Cx, e: &Expr, root: Root) -> bool {
+    let sub = |e: &Expr| leaves_alone(cx, e, root);
+    match &e.kind {
+        ExprKind::Num(_)
+        | ExprKind::Dnum(_)
+        | ExprKind::Bool(_)
+        | ExprKind::Str(_)
+        | ExprKind::Errno
+        | ExprKind::Intno
+        | ExprKind::Present(_) => true,
+        ExprKind::Local(s) => root != Root::Local(*s),
+        ExprKind::Global(g) => root != Root::Global(*g),
+        ExprKind::Load(pl) => {
+            pl.root != root
+                && !matches!(pl.root, Root::Ref(_))
+                && pl.path.iter().all(|op| match op {
+                    PathOp::Field(_) => true,
+                    PathOp::Index(es) => es.iter().all(sub),
+                })
+        }
+        ExprKind::Field(a, _)
+        | ExprKind::Unary(_, a)
+        | ExprKind::NumModDivK(a, ..)
+        | ExprKind::ToDnum(a)
+        | ExprKind::ToNum(a) => sub(a),
+        ExprKind::Binary(_, a, b) => sub(a) && sub(b),
+        ExprKind::Record(es) | ExprKind::Array(es, _) => es.iter().all(sub),
+        ExprKind::Native(n, args) => {
+            matches!(
+                cx.standard_native(*n),
+                Some("NumToStr" | "StrPart" | "StrLen" | "StrFind" | "StrMatch" | "StrMemb")
+            ) && args.iter().all(|a| match a {
+                crate::ir::Arg::Value(e) => sub(e),
+                crate::ir::Arg::Absent | crate::ir::Arg::Switch => true,
+                _ => false,
+            })
+        }
+        ExprKind::SignalValue(_) | ExprKind::Call(..) | ExprKind::Placeholder(_) => false,
+    }
 }
 
 /// Most records kept for reuse ([`Interp::spare_record`]).
@@ -265,14 +313,15 @@ impl Interp {
     fn concat(&mut self, c: &Code, parts: &Parts) -> Exec<Value> {
         let mut buf = self.strbufs.pop().unwrap_or_default();
         buf.clear();
-        let r = self.concat_into(c, parts, &mut buf);
+        let r = self.concat_into(c, parts, 0, &mut buf);
         let v = r.map(|()| Value::Str(RStr::from(buf.as_str())));
         self.strbufs.push(buf);
         v
     }
 
-    fn concat_into(&mut self, c: &Code, parts: &Parts, buf: &mut String) -> Exec<()> {
-        for (k, (part, span)) in parts.iter().enumerate() {
+    /// Parts `from..` appended to `buf` (which holds the text of the parts before them).
+    fn concat_into(&mut self, c: &Code, parts: &Parts, from: usize, buf: &mut String) -> Exec<()> {
+        for (k, (part, span)) in parts.iter().enumerate().skip(from) {
             part.append(self, c, buf)?;
             // More than MAX_STRING bytes may still be few enough characters.
             if k > 0 && buf.len() > MAX_STRING {
@@ -330,6 +379,16 @@ pub(crate) enum VSink {
 }
 
 impl VSink {
+    /// The local or global, for a whole one.
+    #[inline(always)]
+    fn root(&self) -> Option<Root> {
+        match self {
+            VSink::Local(s, _) => Some(Root::Local(*s)),
+            VSink::Global(g, _) => Some(Root::Global(*g)),
+            VSink::Place(_) => None,
+        }
+    }
+
     pub(crate) fn of(cx: &Cx, place: &Place) -> VSink {
         match (place.root, place.path.is_empty()) {
             (Root::Local(s), true) => VSink::Local(s, place.clone()),
@@ -470,8 +529,10 @@ fn assign_nums(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
 /// `s := text` for a string held by a whole local or global, when the text is computed
 /// (a constant, a concatenation, a standard `NumToStr` or `StrPart`): the text is built in
 /// a scratch buffer (everything evaluated before anything is stored, as for any value),
-/// then written into the variable's own text when it alone holds it
-/// ([`RStr::set`]); a text another value shares is left alone and replaced.
+/// which then becomes the variable's own text when it alone holds it (its old buffer is
+/// kept for scratch); a text another value shares is left alone and replaced.
+/// `s := s + …` where the operands after `s` neither read nor change `s` appends to the
+/// text `s` holds alone, and puts it back as it was if an operand fails.
 fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
     // (A native's type is not known here: only the string natives `natives::text` takes
     // become a `StrPart::Text`.)
@@ -494,30 +555,110 @@ fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
         _ => return None,
     };
     let sink = VSink::of(cx, place);
-    Some(Box::new(move |it, c| {
-        let mut buf = it.strbufs.pop().unwrap_or_default();
-        buf.clear();
-        let r = match &src {
-            Src::Concat(parts) => it.concat_into(c, parts, &mut buf),
-            Src::Part(p) => p.append(it, c, &mut buf),
-        };
-        let r = r.and_then(|()| {
-            let slot = match &sink {
-                VSink::Local(s, _) => it.stack.get_mut(it.bp + *s as usize),
-                VSink::Global(g, _) => it.globals.get_mut(*g as usize),
-                VSink::Place(_) => None,
-            };
-            match slot {
-                Some(Value::Str(t)) => {
-                    t.set(&buf);
-                    Ok(())
-                }
-                _ => sink.put(it, c, Value::Str(RStr::from(buf.as_str()))),
+    // `s := s + a + b …` where nothing after `s` reads or changes `s`: appended to the
+    // text `s` holds, when it holds it alone.
+    let appends = matches!(src, Src::Concat(_))
+        && match concat_spine(value).as_slice() {
+            [(first, _), rest @ ..] => {
+                let same = match (&first.kind, place.root) {
+                    (ExprKind::Local(s), Root::Local(t)) => *s == t,
+                    (ExprKind::Global(g), Root::Global(h)) => *g == h,
+                    _ => false,
+                };
+                same && rest.iter().all(|(e, _)| leaves_alone(cx, e, place.root))
             }
+            [] => false,
+        };
+    Some(match src {
+        Src::Concat(parts) if appends => Box::new(move |it, c| {
+            match it.text_in_place(sink.root(), |it, t| it.concat_into(c, &parts, 1, t)) {
+                Some(r) => r,
+                None => it.store_text(c, &sink, |it, buf| it.concat_into(c, &parts, 0, buf)),
+            }
+        }),
+        Src::Concat(parts) => Box::new(move |it, c| {
+            it.store_text(c, &sink, |it, buf| it.concat_into(c, &parts, 0, buf))
+        }),
+        Src::Part(p) => {
+            Box::new(move |it, c| it.store_text(c, &sink, |it, buf| p.append(it, c, buf)))
+        }
+    })
+}
+
+impl Interp {
+    /// Store the text `fill` writes into a scratch buffer in the string `sink` (a whole
+    /// local or global): the buffer becomes the text it holds when it holds it alone.
+    #[inline(always)]
+    fn store_text(
+        &mut self,
+        c: &Code,
+        sink: &VSink,
+        fill: impl FnOnce(&mut Interp, &mut String) -> Exec<()>,
+    ) -> Exec<()> {
+        let mut buf = self.strbufs.pop().unwrap_or_default();
+        buf.clear();
+        let r = fill(self, &mut buf).and_then(|()| match self.sink_slot(sink) {
+            Some(Value::Str(t)) => {
+                // The new text's buffer goes to the variable, its old one is kept for
+                // scratch (no copy).
+                match t.unique_mut() {
+                    Some(dst) => std::mem::swap(dst, &mut buf),
+                    None => *t = RStr::from(buf.as_str()),
+                }
+                Ok(())
+            }
+            _ => sink.put(self, c, Value::Str(RStr::from(buf.as_str()))),
         });
-        it.strbufs.push(buf);
+        self.strbufs.push(buf);
         r
-    }))
+    }
+
+    /// The slot of a whole local or global sink.
+    #[inline(always)]
+    fn sink_slot(&mut self, sink: &VSink) -> Option<&mut Value> {
+        self.root_slot(sink.root()?)
+    }
+
+    /// The slot of a local or global.
+    #[inline(always)]
+    fn root_slot(&mut self, root: Root) -> Option<&mut Value> {
+        match root {
+            Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
+            Root::Global(g) => self.globals.get_mut(g as usize),
+            Root::Ref(_) => None,
+        }
+    }
+
+    /// Append to a string held by a local or global in place, when it holds its text
+    /// alone (`None` when it does not: nothing was evaluated). The text is taken out of
+    /// the value while `fill` appends to it (`fill` must leave the variable alone), and put
+    /// back with what `fill` appended, or as it was on an error.
+    #[inline(always)]
+    fn text_in_place(
+        &mut self,
+        root: Option<Root>,
+        fill: impl FnOnce(&mut Interp, &mut String) -> Exec<()>,
+    ) -> Option<Exec<()>> {
+        let root = root?;
+        let mut text = match self.root_slot(root) {
+            Some(Value::Str(t)) => std::mem::take(t.unique_mut()?),
+            _ => return None,
+        };
+        let old = text.len();
+        let r = fill(self, &mut text);
+        if r.is_err() {
+            text.truncate(old);
+        }
+        match self.root_slot(root) {
+            Some(Value::Str(t)) => match t.unique_mut() {
+                Some(dst) => *dst = text,
+                None => *t = RStr::from(text),
+            },
+            Some(slot) => *slot = Value::Str(RStr::from(text)),
+            None => {}
+        }
+        Some(r)
+    }
 }
 
 /// `RETURN value` in a FUNC. A record held by routine data or a parameter is copied into a
