@@ -144,27 +144,40 @@ fn signal_table(cfg: &config::Config, diags: &mut Diagnostics) -> Arc<SignalTabl
 /// programs (a folder such as `programs/manual`, or the program modules of several tasks
 /// beside the system modules they share): then each program module is checked with every
 /// system module of the set (`SYSMODULE`, or a `.sys` file), with the configuration next to
-/// it; system modules alone are checked on their own.
+/// it; system modules alone are checked on their own. Then the result says so (which name
+/// two files share), for the user to see that `rapidvc run` of the same files would refuse
+/// them as one program.
 pub fn check_files(
     user: &[ast::File],
     paths: &[PathBuf],
     sources: &mut SourceMap,
     registry: &Registry,
     diags: &mut Diagnostics,
-) {
+) -> Option<Independent> {
     let dir = config_dir(None, paths);
     let signals = load_signals(dir.as_deref(), sources, diags);
     let errors = sema_errors(user, sources, &signals, registry);
-    let independent = user.len() > 1
-        && errors.iter().any(|e| {
-            matches!(e.kind, sema::SemaErrorKind::Duplicate { first, .. }
-                if first.source != e.span.source)
-        });
-    if !independent {
+    let shared = if user.len() > 1 {
+        errors.iter().find_map(|e| match &e.kind {
+            sema::SemaErrorKind::Duplicate { name, first } if first.source != e.span.source => {
+                Some(Independent {
+                    name: name.clone(),
+                    files: [
+                        sources.get(first.source).name.clone(),
+                        sources.get(e.span.source).name.clone(),
+                    ],
+                })
+            }
+            _ => None,
+        })
+    } else {
+        None
+    };
+    if shared.is_none() {
         for e in errors {
             diags.push(e);
         }
-        return;
+        return None;
     }
     let is_system = |f: &ast::File, sources: &SourceMap| {
         let name = &sources.get(f.span.source).name;
@@ -204,6 +217,30 @@ pub fn check_files(
                 diags.push(e);
             }
         }
+    }
+    shared
+}
+
+/// Files that [`check_files`] checked as independent programs, and the first global name two
+/// of them both declare.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Independent {
+    /// The name declared in both files.
+    pub name: String,
+    /// The file that declares it first, and the other.
+    pub files: [String; 2],
+}
+
+impl std::fmt::Display for Independent {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let [a, b] = &self.files;
+        write!(
+            f,
+            "note: {a} and {b} both declare `{}`, so they are independent programs: each \
+             program module was checked on its own with the system modules; `rapidvc run` \
+             loads the files it is given as one program",
+            self.name
+        )
     }
 }
 
@@ -424,7 +461,11 @@ mod tests {
             parse_module(&mut sources, "d/t2.mod", t2, &mut diags),
         ];
         let paths = [PathBuf::from("d/t1.mod")];
-        check_files(&files, &paths, &mut sources, &registry, &mut diags);
+        let independent = check_files(&files, &paths, &mut sources, &registry, &mut diags);
+        assert_eq!(
+            independent.map(|i| i.files),
+            Some(["d/t1.mod".to_string(), "d/t2.mod".to_string()])
+        );
         // (The folder does not exist, so its configuration cannot be read: not asserted.)
         let errors: Vec<String> = diags
             .iter()

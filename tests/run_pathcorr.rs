@@ -92,6 +92,25 @@ fn straight_in_lockstep(port: u16, trace: &std::path::Path) -> Ended {
     run_program(rapidvc!(), STRAIGHT, &args, LIMIT)
 }
 
+/// `program` run to its end with the built-in sensor's seam offset y = 3, z = −2 on
+/// UCdevice, traced to the temporary file `trace`.
+fn with_seam_sensor(program: &str, trace: &str) -> (Ended, Trace) {
+    let trace_path = temp(trace);
+    let run = run_program(
+        rapidvc!(),
+        program,
+        &args(&[
+            "--device",
+            "UCdevice=builtin:pathcorr:y=3,z=-2",
+            "--trace",
+            trace_path.to_str().unwrap(),
+        ]),
+        LIMIT,
+    );
+    ok(&run);
+    (run, Trace::read(&trace_path))
+}
+
 fn ok(run: &Ended) {
     assert_eq!(run.code, Some(0), "{}\n{}", run.stdout, run.stderr);
 }
@@ -138,21 +157,8 @@ mod golden {
 
     #[test]
     fn straight_seam_400_mm_at_v10_ends_on_the_corrected_path() {
-        let trace_path = temp("straight.csv");
-        let run = run_program(
-            rapidvc!(),
-            STRAIGHT,
-            &args(&[
-                "--device",
-                "UCdevice=builtin:pathcorr:y=3,z=-2",
-                "--trace",
-                trace_path.to_str().unwrap(),
-            ]),
-            LIMIT,
-        );
-        ok(&run);
+        let (run, trace) = with_seam_sensor(STRAIGHT, "straight.csv");
         assert_eq!(run.stdout, "state after the fine point: 2\n");
-        let trace = Trace::read(&trace_path);
         check_straight(&trace);
         // Golden rows: every 10th corrected cycle of the ramp-in, every 400th after it, the
         // last one.
@@ -187,6 +193,49 @@ mod golden {
         }
         insta::assert_snapshot!("straight_seam", golden);
     }
+}
+
+/// StopMove/StartMove and SpeedRefresh during a corrected EGMMoveL hold and slow the path
+/// without leaving the corrected seam. (Playing the path at a rate below 1 once started from
+/// the corrected setpoint and ended the correction sequence at the hold: the robot swung
+/// across the seam at 1,275 mm/s.)
+#[test]
+fn a_corrected_move_held_and_slowed_stays_on_the_corrected_seam() {
+    let (_, trace) = with_seam_sensor("tests/run/pathcorr/held.mod", "held.csv");
+    let instr = trace.col("instr");
+    let rows: Vec<usize> = (0..trace.rows.len())
+        .filter(|r| trace.rows[*r][instr] == "EGMMoveL")
+        .collect();
+    let speed = |r: usize| trace.num(r, "speed_mm_s").unwrap();
+    let mut x_before = f64::NEG_INFINITY;
+    for &r in &rows {
+        let [x, y, z] = trace.tcp(r);
+        assert!(speed(r) <= 102.0, "row {r}: {} mm/s at v100", speed(r));
+        assert!(
+            (20.0 - 1e-3..=23.0 + 1e-3).contains(&y) && (498.0 - 1e-3..=500.0 + 1e-3).contains(&z),
+            "row {r}: off the seam at y {y}, z {z}"
+        );
+        assert!(
+            x >= x_before - 1e-6,
+            "row {r}: x went back from {x_before} to {x}"
+        );
+        x_before = x;
+    }
+    // Held at rest on the path for the TRAP's 0.5 s (4 ms cycles), later at half speed.
+    let longest_rest = rows
+        .iter()
+        .fold((0, 0), |(run, best), &r| {
+            let run = if speed(r) == 0.0 { run + 1 } else { 0 };
+            (run, best.max(run))
+        })
+        .1;
+    assert!(longest_rest >= 120, "held for {longest_rest} cycles");
+    assert!(
+        rows.iter().any(|&r| (speed(r) - 50.0).abs() < 0.5),
+        "SpeedRefresh 50 plays the path at 50 mm/s"
+    );
+    let end = trace.tcp(*rows.last().unwrap());
+    assert!(dist(&end, &CORRECTED_END) < 0.2, "ends at {end:?}");
 }
 
 /// The manual's example (§9.3.6.3) with one command and defaults.

@@ -663,6 +663,76 @@ fn a_move_interrupted_by_stop_continues_to_its_target_on_start() {
     within(5, "stopped after once", || stopped(&mut c));
 }
 
+/// A stop in the middle of a fast straight line decelerates on the line and holds there; a
+/// start goes on along the same path, through the fly-by corner, to the end. (Before, a stop
+/// braked every axis on its own and left the line by more than a millimetre.)
+#[test]
+fn a_stop_holds_the_robot_on_its_path_and_a_start_goes_on_along_it() {
+    let dir = std::env::temp_dir().join(format!("rapidvc-rws-line-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("line.csv");
+    let srv = Serve::start(
+        rapidvc_testkit::rapidvc!(),
+        "line",
+        "tests/serve",
+        &["--entry", "line", "--trace", trace.to_str().unwrap()],
+    );
+    let mut c = login(&srv);
+    start_program(&mut c, "once");
+    let tcp = |c: &mut Client| {
+        let s = state(
+            c,
+            "/rw/motionsystem/mechunits/ROB_1/robtarget?tool=tool0&wobj=wobj0&coordinate=Base",
+        );
+        let f = |k: &str| s[k].as_str().unwrap().parse::<f64>().unwrap();
+        [f("x"), f("y"), f("z")]
+    };
+    within(20, "the TCP is on the line, past its middle", || {
+        let [x, y, _] = tcp(&mut c);
+        (x - 900.0).abs() < 0.01 && y > -100.0
+    });
+    stop_program(&mut c);
+    within(5, "stopped", || stopped(&mut c));
+    let held = tcp(&mut c);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(tcp(&mut c), held, "the robot stands while stopped");
+    assert!(!reached(&mut c), "the program waits in its move");
+    start_program(&mut c, "asis");
+    within(15, "the moves end", || reached(&mut c));
+    let ended = srv.stop(Duration::from_secs(20));
+    assert_eq!(ended.code, Some(0), "{ended:?}");
+    let trace = rapidvc_testkit::csv::Csv::read(&trace);
+    let col = |name: &str| trace.col(name);
+    let (instr, x, y, z, speed) = (
+        col("instr"),
+        col("x"),
+        col("y"),
+        col("z"),
+        col("speed_mm_s"),
+    );
+    let num = |r: &Vec<String>, c: usize| r[c].parse::<f64>().unwrap();
+    let line: Vec<&Vec<String>> = trace.rows.iter().filter(|r| r[instr] == "MoveL").collect();
+    // On the first line (before its corner zone of 100 mm): x = 900 and z = 800 throughout,
+    // the hold included.
+    let mut rests = 0;
+    for r in line.iter().filter(|r| num(r, y) < 199.0) {
+        assert!(
+            (num(r, x) - 900.0).abs() < 0.01 && (num(r, z) - 800.0).abs() < 0.01,
+            "off the line at {:?}",
+            [num(r, x), num(r, y), num(r, z)]
+        );
+        if num(r, speed) == 0.0 {
+            rests += 1;
+        }
+    }
+    assert!(rests > 50, "held on the line ({rests} cycles at rest)");
+    let last = line.last().unwrap();
+    assert!(
+        (num(last, x) - 1200.0).abs() < 0.01 && (num(last, y) - 300.0).abs() < 0.01,
+        "ends at the last target"
+    );
+}
+
 #[test]
 fn the_speed_ratio_scales_the_moves_planned_after_it_and_those_under_way() {
     let srv = start_moves("speedratio");

@@ -126,3 +126,43 @@ fn date_now_is_the_hosts_local_date() {
     assert_eq!(stdout, "2025-01-01\n");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A backup's task holds the LINKEDM system module, whose service routine calls
+/// `Linked_m_exe` from an encrypted RobotWare module: the task checks and its program runs;
+/// calling the service routine stops the program with the reason (no linked motors).
+#[test]
+fn a_backup_with_the_linked_motors_service_module_checks_and_runs() {
+    let dir = temp_dir("linkedm");
+    let task = dir.join("RAPID").join("TASK1");
+    std::fs::create_dir_all(task.join("SYSMOD")).unwrap();
+    std::fs::create_dir_all(task.join("PROGMOD")).unwrap();
+    std::fs::write(
+        task.join("SYSMOD").join("LINKEDM.sys"),
+        "MODULE LINKEDM (SYSMODULE)\n  PERS num follower_axis{2} := [0, 0];\n  PROC Linked_m()\n    Linked_m_exe;\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let main = |body: &str| {
+        std::fs::write(
+            task.join("PROGMOD").join("main.mod"),
+            format!("MODULE MainModule\n  PROC main()\n    {body}\n  ENDPROC\nENDMODULE\n"),
+        )
+        .unwrap();
+    };
+    main("TPWrite \"cell ready\";");
+    let (code, out, err) = rapidvc_testkit::procs::output_in(rapidvc!(), &dir, &["check", "."], 80);
+    assert_eq!(code, 0, "check: {out}{err}");
+    let (code, out, err) = run(&dir, &["."]);
+    assert_eq!(code, 0, "run: {out}{err}");
+    assert!(out.contains("cell ready"), "{out}");
+
+    main("Linked_m;");
+    let (code, out, err) = run(&dir, &["."]);
+    assert_ne!(
+        code, 0,
+        "calling the service routine must stop the program: {out}"
+    );
+    assert!(
+        err.contains("`Linked_m_exe` is not supported by rapidvc") && err.contains("linked motors"),
+        "{err}"
+    );
+}

@@ -77,6 +77,7 @@ pub fn run(args: CheckArgs) -> ExitCode {
             }
         }
     }
+    let mut independent = None;
     let mut parsed: Vec<ast::File> = Vec::with_capacity(ids.len());
     for (file, file_diags) in parse_all(&map, &ids) {
         diags.extend(file_diags);
@@ -89,11 +90,15 @@ pub fn run(args: CheckArgs) -> ExitCode {
         Depth::Full => {
             if !diags.has_errors() && !io_failed {
                 let registry = crate::interp::Registry::standard();
-                program::check_files(&parsed, &args.paths, &mut map, &registry, &mut diags);
+                independent =
+                    program::check_files(&parsed, &args.paths, &mut map, &registry, &mut diags);
             }
         }
     }
     diags.sort();
+    if let (Some(note), Format::Human) = (&independent, args.format) {
+        eprintln!("{note}");
+    }
     report(&diags, &map, args.format, files.len());
     if io_failed {
         ExitCode::from(2)

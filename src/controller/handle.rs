@@ -474,6 +474,51 @@ impl ControllerHandle {
         }
     }
 
+    /// The program stops: decelerate on the path (the bounded ramp of `StopMove`) and hold
+    /// there, the moves kept, until [`Self::continue_motion`]. Returns when the robot is at
+    /// rest. Refused while external guidance moves the robot (an EGM run pauses itself).
+    pub fn pause_motion(&mut self) -> Result<(), PathOpError> {
+        let at_rest = |s: &MotionState| !s.moving || s.held_at_rest;
+        match &mut self.driver {
+            Driver::Virtual(v) => {
+                v.core.path_op(PathOp::Pause)?;
+                // A ramp down from top speed lasts a few seconds at most; the bound only
+                // guards against a bug turning this into a hang.
+                for _ in 0..1_000_000 {
+                    if at_rest(&v.core.state()) {
+                        break;
+                    }
+                    let from = self.events.len();
+                    let sp = v.tick(&mut self.events);
+                    self.position.route(&mut self.events, from, sp.speed);
+                }
+                Ok(())
+            }
+            Driver::RealTime(r) => {
+                let (tx, rx) = std::sync::mpsc::sync_channel(1);
+                let gone = PathOpError::Unavailable;
+                r.control
+                    .send(Control::Path {
+                        op: PathOp::Pause,
+                        reply: tx,
+                    })
+                    .map_err(|_| gone)?;
+                rx.recv_timeout(Duration::from_secs(1))
+                    .map_err(|_| gone)??;
+                let _ = Self::settle_within(r, Duration::from_secs(30), |p| at_rest(&p.state));
+                let from = self.events.len();
+                Self::drain_rt_events(r, &mut self.events);
+                self.position.route(&mut self.events, from, 0.0);
+                Ok(())
+            }
+        }
+    }
+
+    /// The program starts again: the path [`Self::pause_motion`] held goes on.
+    pub fn continue_motion(&mut self) -> Result<(), PathOpError> {
+        self.path_op(PathOp::Continue)
+    }
+
     /// Hold, resume, store, restore or clear the path (`motion::PathOp`). A cleared path
     /// that was moving brakes to rest first; planning then goes on from where the robot is.
     pub fn path_op(&mut self, op: PathOp) -> Result<(), PathOpError> {
@@ -550,10 +595,19 @@ impl ControllerHandle {
         r: &mut RealTimeDriver,
         ok: impl Fn(&super::motion_thread::Published) -> bool,
     ) -> Result<(), ControllerError> {
+        Self::settle_within(r, Duration::from_secs(1), ok)
+    }
+
+    /// [`Self::settle`] with a bound of `limit` wall time.
+    fn settle_within(
+        r: &mut RealTimeDriver,
+        limit: Duration,
+        ok: impl Fn(&super::motion_thread::Published) -> bool,
+    ) -> Result<(), ControllerError> {
         let clock = MonotonicClock::new();
         let mut guard = r.published();
         while !ok(&guard) {
-            if !guard.running || clock.elapsed() > Duration::from_secs(1) {
+            if !guard.running || clock.elapsed() > limit {
                 return Err(ControllerError::Thread(
                     "the motion thread does not answer".into(),
                 ));

@@ -233,6 +233,11 @@ pub fn path_op_plan(
             }
         }
         PathOp::Clear => planner.set_start(here),
-        PathOp::Hold { .. } | PathOp::Release | PathOp::Speed(_) | PathOp::Ratio(_) => {}
+        PathOp::Hold { .. }
+        | PathOp::Release
+        | PathOp::Speed(_)
+        | PathOp::Ratio(_)
+        | PathOp::Pause
+        | PathOp::Continue => {}
     }
 }

@@ -110,6 +110,10 @@ pub struct Executor {
     halted: bool,
     correction: Option<Box<dyn PathCorrection>>,
     track: Option<Track>,
+    /// The planned sample of the last cycle before its path correction (the setpoint is the
+    /// corrected one): where an interpolation at a path rate below 1 starts in a corrected
+    /// sequence.
+    planned: Option<Sample>,
     /// Joint speeds of the last cycle, deg/s.
     velocity: JointsDeg,
     braking: Option<Braking>,
@@ -167,6 +171,7 @@ impl Executor {
             last_done: None,
             halted: false,
             correction: None,
+            planned: None,
             track: None,
             velocity: [0.0; 6],
             braking: None,
@@ -242,6 +247,7 @@ impl Executor {
             },
             events_total: self.events.total(),
             held: self.rate.hold,
+            held_at_rest: self.held_at_rest(),
         }
     }
 
@@ -401,6 +407,8 @@ impl Executor {
             };
             match next {
                 Some(mut out) => {
+                    // A path correction sequence ends at a planned stop point only.
+                    let planned_stop = out.at_stop_point;
                     // Held on the path at rest: the robot stands still.
                     out.at_stop_point |= self.held_at_rest();
                     fresh = out.first;
@@ -408,7 +416,8 @@ impl Executor {
                         .active_instr()
                         .or(self.pending_done())
                         .or(self.last_done);
-                    match self.correct(now, &mut instr, out.sample, out.at_stop_point, &prev) {
+                    self.planned = Some(out.sample);
+                    match self.correct(now, &mut instr, out.sample, planned_stop, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
                         Err(error) => {
                             self.fault(instr, error);

@@ -70,6 +70,8 @@ pub struct MotionState {
     /// The path is held (`StopMove`): the robot decelerates to rest on it and stays there
     /// until it is released.
     pub held: bool,
+    /// Held by `StopMove` or a program stop, and come to rest on the path.
+    pub held_at_rest: bool,
 }
 
 impl MotionState {

@@ -38,6 +38,19 @@ MODULE MainModule
         MoveAbsJ home, v500, z10, tool0;
     ENDPROC
 
+    ! `--entry line`: a fast straight line with a fly-by corner into a second one, for a stop
+    ! in the middle of it (the robot must stay on the path while it stops and after it starts).
+    CONST robtarget line_a := [[900,-300,800],[0,0,1,0],[-1,0,-1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    CONST robtarget line_b := [[900,300,800],[0,0,1,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    CONST robtarget line_c := [[1200,300,800],[0,0,1,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    PROC line()
+        reached := FALSE;
+        MoveJ line_a, v1000, fine, tool0;
+        MoveL line_b, v1000, z100, tool0;
+        MoveL line_c, v1000, fine, tool0;
+        reached := TRUE;
+    ENDPROC
+
     PROC main()
         cycles := cycles + 1;
         SetDO DO_ECHO, DI1;

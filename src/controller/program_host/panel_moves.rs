@@ -8,13 +8,15 @@
 //!   ([`crate::controller::egm_controller::EgmController::set_speed_ratio`]).
 //! * **Manual reduced speed** (MANR): the TCP speed of moves planned in MANR is capped at
 //!   250 mm/s.
-//! * **Stop and continue**: [`ControllerHost::hold_motion`] brakes the robot (all axes
-//!   together, within their accelerations) and keeps the moves that had not ended;
-//!   [`ControllerHost::resume_motion`] plans them again from where the robot stands, so an
-//!   interrupted move continues to its target when the program is started again (its
-//!   position events, `TriggL` and the like, are not fired again). An EGM run going on
-//!   pauses instead (its EGM speed ramps to zero, the sensor session goes on) and continues
-//!   at the start.
+//! * **Stop and continue**: [`ControllerHost::hold_motion`] decelerates the robot on its
+//!   path (the bounded ramp of `StopMove`: the TCP does not leave the planned path, fly-by
+//!   corners included) and holds it there with the moves kept planned;
+//!   [`ControllerHost::resume_motion`] lets the same path go on, so an interrupted move
+//!   continues to its target when the program is started again (its position events,
+//!   `TriggL` and the like, fire once). If manual reduced speed was switched on while
+//!   stopped, the kept moves are planned again from where the robot stands, under its cap.
+//!   An EGM run going on pauses instead (its EGM speed ramps to zero, the sensor session
+//!   goes on) and continues at the start.
 
 use std::collections::VecDeque;
 use std::sync::Arc;
@@ -52,8 +54,10 @@ pub(super) struct PanelMoves {
     pub(super) limits: Arc<PanelLimits>,
     /// Moves accepted and not yet known to have ended, oldest first, with their ids.
     pub(super) unfinished: VecDeque<(u64, MotionCommand)>,
-    /// The robot was braked by [`ControllerHost::hold_motion`] with these moves unfinished.
+    /// The robot is held on its path by [`ControllerHost::hold_motion`].
     held: bool,
+    /// Manual reduced speed was on when the robot was held.
+    manual_at_hold: bool,
 }
 
 /// Run `submit` with the panel's MANR cap (when `limits` are given and the mode is MANR)
@@ -87,6 +91,7 @@ impl ControllerHost {
             limits,
             unfinished: VecDeque::new(),
             held: false,
+            manual_at_hold: false,
         });
         self
     }
@@ -115,37 +120,42 @@ impl ControllerHost {
         }
     }
 
-    /// The program stops: brake the robot and keep the moves that had not ended (an EGM run
-    /// pauses). Returns how many moves are kept.
+    /// The program stops: the robot decelerates on its path and holds there, the moves kept
+    /// planned (an EGM run pauses instead). Returns how many moves had not ended.
     pub fn hold_motion(&mut self) -> usize {
         if let Some(egm) = self.egm.as_mut() {
             egm.pause_run();
         }
         self.prune_unfinished();
-        let moving = self
-            .ctl
-            .as_mut()
-            .map(|c| {
-                let st = c.state();
-                st.moving || st.pending > 0
-            })
-            .unwrap_or(false);
-        if let Some(ctl) = self.ctl.as_mut()
-            && moving
-        {
-            ctl.stop_motion();
+        let Some(ctl) = self.ctl.as_mut() else {
+            return 0;
+        };
+        if self.panel.is_none() {
+            // No panel to start it again: brake, as the end of a run does.
+            let st = ctl.state();
+            if st.moving || st.pending > 0 {
+                ctl.stop_motion();
+            }
+            self.pump_events();
+            return 0;
         }
+        // Refused only under external guidance (the EGM run paused above holds the robot)
+        // or when the motion thread is gone (nothing moves then).
+        let paused = ctl.pause_motion().is_ok();
         self.pump_events();
         match self.panel.as_mut() {
             Some(p) => {
-                p.held = moving && !p.unfinished.is_empty();
-                if p.held { p.unfinished.len() } else { 0 }
+                p.held = paused;
+                p.manual_at_hold = p.limits.manual_reduced.load(Ordering::Relaxed);
+                p.unfinished.len()
             }
             None => 0,
         }
     }
 
-    /// The program starts again: plan the kept moves again from where the robot stands.
+    /// The program starts again: the held path goes on where the robot stands on it. When
+    /// manual reduced speed was switched on while stopped, the moves planned before are
+    /// planned again from here under its 250 mm/s cap instead.
     pub fn resume_motion(&mut self) -> Result<(), HostError> {
         if let Some(egm) = self.egm.as_mut() {
             egm.resume_run();
@@ -157,11 +167,28 @@ impl ControllerHost {
             return Ok(());
         }
         p.held = false;
-        let moves: Vec<(u64, MotionCommand)> = p.unfinished.drain(..).collect();
-        let limits = p.limits.clone();
+        let replan = !p.manual_at_hold && p.limits.manual_reduced.load(Ordering::Relaxed);
+        if !replan {
+            let ctl = self.ctl()?;
+            ctl.continue_motion()
+                .map_err(|e| HostError::fatal(format!("the stopped moves cannot continue: {e}")))?;
+            self.pump_events();
+            return Ok(());
+        }
+        self.prune_unfinished();
+        let moves: Vec<(u64, MotionCommand)> = match self.panel.as_mut() {
+            Some(p) => p.unfinished.drain(..).collect(),
+            None => Vec::new(),
+        };
+        let limits = self.panel.as_ref().map(|p| p.limits.clone());
+        let ctl = self.ctl()?;
+        // The robot stands on the held path: drop it, then plan the moves again.
+        ctl.stop_motion();
+        ctl.continue_motion()
+            .map_err(|e| HostError::fatal(format!("the stopped moves cannot continue: {e}")))?;
         for (id, cmd) in moves {
             let ctl = self.ctl()?;
-            match with_limits(ctl, Some(&limits), |c| c.submit(cmd.clone())) {
+            match with_limits(ctl, limits.as_deref(), |c| c.submit(cmd.clone())) {
                 Ok(()) => {
                     if let Some(p) = self.panel.as_mut() {
                         p.unfinished.push_back((id, cmd));
@@ -185,9 +212,17 @@ impl ControllerHost {
     /// After a program-pointer reset: the kept moves are dropped (the robot stays where it
     /// stopped) and the program's waits for them are over.
     pub fn forget_motion(&mut self) {
-        if let Some(p) = self.panel.as_mut() {
-            p.held = false;
-            p.unfinished.clear();
+        let held = match self.panel.as_mut() {
+            Some(p) => {
+                p.unfinished.clear();
+                std::mem::take(&mut p.held)
+            }
+            None => false,
+        };
+        if held && let Some(ctl) = self.ctl.as_mut() {
+            // The held path is dropped; the robot stands where it stopped.
+            ctl.stop_motion();
+            let _ = ctl.continue_motion();
         }
         self.void_up_to = self.last_id;
     }

@@ -7,7 +7,7 @@
 //!
 //! Hosts without EGM (the `rapidvc test` runner) make every instruction stop the program with
 //! "`EGMGetId` is not supported by this controller". EGMMoveL/EGMMoveC (path correction)
-//! live in `egm_path.rs`, which replaces the placeholders registered here.
+//! live in `egm_path.rs`.
 
 use super::{Ctx, NativeFn, Registry};
 use crate::egm_args::{
@@ -86,14 +86,6 @@ const NATIVES: &[(&str, NativeFn)] = &[
         egm_stream_start,
     ),
     (r"PROC EGMStreamStop(VAR egmident EGMid)", egm_stream_stop),
-    (
-        r"PROC EGMMoveL(VAR egmident EGMid, robtarget ToPoint, speeddata Speed, zonedata Zone, PERS tooldata Tool, \PERS wobjdata WObj, \PERS loaddata TLoad, \switch NoCorr)",
-        path_correction_pending,
-    ),
-    (
-        r"PROC EGMMoveC(VAR egmident EGMid, robtarget CirPoint, robtarget ToPoint, speeddata Speed, zonedata Zone, PERS tooldata Tool, \PERS wobjdata WObj, \PERS loaddata TLoad, \switch NoCorr)",
-        path_correction_pending,
-    ),
 ];
 
 /// Register this domain.
@@ -101,10 +93,6 @@ pub(super) fn register(r: &mut Registry) {
     for (sig, f) in NATIVES {
         r.add(sig, *f);
     }
-}
-
-fn path_correction_pending(cx: &mut Ctx<'_>) -> Exec<Value> {
-    Err(cx.unsupported("EGM path correction: issue 6"))
 }
 
 // ----- the host -----

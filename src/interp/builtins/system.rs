@@ -6,7 +6,8 @@
 //! data (`GetSysData`, `SetSysData`), the configuration database (`ReadCfgData`,
 //! `WriteCfgData`, `SaveCfgData`), text tables (`TextTabGet`, `TextGet`,
 //! `TextTabFreeToUse`), the event log (`ErrLog`, `SkipWarn`), the interpreter's own state
-//! (`ExecLevel`, `ExecHandler`, `EventType`, `ProgMemFree`) and `WarmStart` (not possible from inside a run).
+//! (`ExecLevel`, `ExecHandler`, `EventType`, `ProgMemFree`), `WarmStart` (not possible from inside a run)
+//! and `Linked_m_exe` (declared for backups' LINKEDM module; not supported when called).
 
 use super::{Ctx, Registry};
 use crate::interp::NArg;
@@ -187,6 +188,19 @@ pub(super) fn register(r: &mut Registry) {
             cx.span,
             "`WarmStart` is not supported by rapidvc: a warm start restarts the controller, \
              which a run cannot do from inside its program (start the run again instead)",
+        ))
+    });
+    // The service routine `Linked_m` of every controller's LINKEDM system module calls
+    // `Linked_m_exe`, which RobotWare installs in an encrypted module for electronically
+    // linked motors. Declared so that a backup's SYSMOD checks and its programs run; calling
+    // it stops the program with the reason (rapidvc has no linked motors).
+    r.add("PROC Linked_m_exe()", |cx| {
+        Err(cx.it.fatal(
+            ErrorKind::Unsupported,
+            cx.span,
+            "`Linked_m_exe` is not supported by rapidvc: it is ABB's service routine for \
+             electronically linked motors (a master and a follower axis), and the virtual \
+             robot has no linked motors",
         ))
     });
 }

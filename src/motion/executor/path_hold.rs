@@ -16,6 +16,12 @@
 //! `SpeedRefresh`: a move already planned slows down or speeds up at once, within the same
 //! bounded ramp. It is kept while external guidance runs (EGM scales its own speed).
 //!
+//! **Program stop.** [`PathOp::Pause`] (the program is stopped: the panel's stop button,
+//! RWS) decelerates on the path with the same bounded ramp as `StopMove` and holds;
+//! [`PathOp::Continue`] (the program starts again) resumes the same path, fly-by corners
+//! included, as a controller continues a stopped program's moves. It is a hold of its own:
+//! a `StopMove` of the program is still in force after the start.
+//!
 //! **Stored path.** [`PathOp::Store`] puts the moves of the current path (active, queued, and
 //! the place on the path the robot holds at) aside and leaves an empty path for new moves;
 //! [`PathOp::Restore`] brings them back. The first cycles after a restore run from where the
@@ -60,6 +66,10 @@ pub enum PathOp {
     Clear,
     /// The controller's speed ratio as a share, 0.01…1 (module docs).
     Ratio(f64),
+    /// The program is stopped: decelerate on the path and hold (module docs).
+    Pause,
+    /// The program starts again: resume the path a [`PathOp::Pause`] held.
+    Continue,
 }
 
 /// Why a [`PathOp`] was refused.
@@ -95,6 +105,8 @@ pub(super) struct PathRate {
     pub current: f64,
     /// Held (`StopMove`): the target is 0.
     pub hold: bool,
+    /// Held by a program stop ([`PathOp::Pause`]): the target is 0.
+    pub paused: bool,
     /// `SpeedRefresh` share (0…1).
     pub speed: f64,
     /// Share of the axis accelerations a rate change may use.
@@ -108,6 +120,7 @@ impl Default for PathRate {
         PathRate {
             current: 1.0,
             hold: false,
+            paused: false,
             speed: 1.0,
             share: RAMP_SHARE,
             ratio: 1.0,
@@ -117,11 +130,16 @@ impl Default for PathRate {
 
 impl PathRate {
     fn target(&self) -> f64 {
-        if self.hold {
+        if self.held() {
             0.0
         } else {
             self.speed * self.ratio
         }
+    }
+
+    /// Held by `StopMove` or by a program stop.
+    fn held(&self) -> bool {
+        self.hold || self.paused
     }
 
     /// True when the path plays exactly as planned.
@@ -193,6 +211,18 @@ impl Executor {
             return Err(PathOpError::External);
         }
         match op {
+            PathOp::Pause => {
+                if !self.rate.held() {
+                    self.rate.share = RAMP_SHARE;
+                }
+                self.rate.paused = true;
+            }
+            PathOp::Continue => {
+                self.rate.paused = false;
+                if !self.rate.hold {
+                    self.rate.share = RAMP_SHARE;
+                }
+            }
             PathOp::Hold { quick } => {
                 self.rate.hold = true;
                 self.rate.share = if quick { QUICK_RAMP_SHARE } else { RAMP_SHARE };
@@ -332,7 +362,11 @@ impl Executor {
     pub(super) fn reset_scaling(&mut self) {
         self.scaled = None;
         self.held_at = None;
-        self.rate.current = if self.rate.hold { 0.0 } else { self.rate.speed };
+        self.rate.current = if self.rate.held() {
+            0.0
+        } else {
+            self.rate.speed
+        };
     }
 
     /// The next cycle's sample at the path rate (module docs); `None` when there is nothing
@@ -341,9 +375,14 @@ impl Executor {
         let mut s = match self.scaled {
             Some(s) => s,
             None => Scaled {
-                base: Sample {
-                    q: self.setpoint.joints,
-                    tcp: self.setpoint.tcp,
+                // In a corrected sequence the setpoint carries the correction, which the
+                // executor adds to each played sample again: start from the planned sample.
+                base: match self.planned {
+                    Some(p) if self.track.is_some_and(|t| t.open) => p,
+                    _ => Sample {
+                        q: self.setpoint.joints,
+                        tcp: self.setpoint.tcp,
+                    },
                 },
                 pending: None,
                 phase: 0.0,
@@ -445,7 +484,7 @@ impl Executor {
 
     /// True while the path is held and the robot has come to rest on it.
     pub(super) fn held_at_rest(&self) -> bool {
-        self.rate.hold && self.rate.current == 0.0
+        self.rate.held() && self.rate.current == 0.0
     }
 }
 
@@ -523,6 +562,41 @@ mod tests {
 
     fn y(sp: &Setpoint) -> f64 {
         sp.tcp.translation.vector.y
+    }
+
+    #[test]
+    fn a_program_stop_holds_on_the_path_apart_from_a_stop_move() {
+        let mut r = Run::new();
+        r.core.enqueue(move_l(2, 200.0)).unwrap();
+        r.steps(100);
+        r.core.path_op(PathOp::Pause).unwrap();
+        let ramp = r.until(|c| c.state().held_at_rest);
+        assert!(ramp.len() > 3, "a ramp, not a jump: {} cycles", ramp.len());
+        for w in ramp.windows(2) {
+            assert!(w[1].speed <= w[0].speed + 1e-9, "slows down steadily");
+            let p = w[1].tcp.translation.vector;
+            assert!((p.x - 1000.0).abs() < 1e-6 && (p.z - 500.0).abs() < 1e-6);
+        }
+        // A StopMove while stopped (a TRAP of another task, say) outlives the start.
+        r.core.path_op(PathOp::Hold { quick: false }).unwrap();
+        r.core.path_op(PathOp::Continue).unwrap();
+        let at = y(ramp.last().unwrap());
+        assert!(r.steps(100).iter().all(|s| y(s) == at && s.speed == 0.0));
+        r.core.path_op(PathOp::Release).unwrap();
+        let rest = r.until(|c| c.state().in_position());
+        assert!((y(rest.last().unwrap()) - 200.0).abs() < 1e-6);
+        // And a StopMove's hold is not ended by a program start either way round.
+        r.core.enqueue(move_l(3, 0.0)).unwrap();
+        r.steps(50);
+        r.core.path_op(PathOp::Hold { quick: false }).unwrap();
+        r.core.path_op(PathOp::Pause).unwrap();
+        r.until(|c| c.state().held_at_rest);
+        r.core.path_op(PathOp::Continue).unwrap();
+        let here = y(&r.step());
+        assert!(r.steps(100).iter().all(|s| y(s) == here));
+        r.core.path_op(PathOp::Release).unwrap();
+        let rest = r.until(|c| c.state().in_position());
+        assert!(y(rest.last().unwrap()).abs() < 1e-6);
     }
 
     #[test]
