@@ -190,7 +190,7 @@ pub struct Interp {
     strbufs: Vec<String>,
     /// Records a store replaced, kept to build the next records in (see
     /// `compile::val`).
-    spare_records: Vec<Box<[Value]>>,
+    spare_records: value::Spares,
     /// Late-bound calls: the procedure name being looked up, and the arguments of each
     /// call site (by its argument list's address) matched to each procedure called there.
     late_name: String,
@@ -284,7 +284,7 @@ impl Interp {
             ret: Value::Absent,
             pending: None,
             strbufs: Vec::new(),
-            spare_records: Vec::new(),
+            spare_records: value::Spares::default(),
             late_name: String::new(),
             late_args: rustc_hash::FxHashMap::default(),
             late_sites: rustc_hash::FxHashMap::default(),

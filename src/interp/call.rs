@@ -360,7 +360,7 @@ impl Interp {
                     // The slot usually still holds this data from the last call: reset
                     // it in place (no allocation for records and arrays).
                     if let Some(slot) = self.stack.get_mut(bp + l.slot as usize) {
-                        slot.reset_from(&cl.default);
+                        slot.reset_pooled(&cl.default, &mut self.spare_records);
                     }
                     continue;
                 }

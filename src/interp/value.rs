@@ -283,6 +283,83 @@ impl Value {
     pub fn num_record(vals: &[f64]) -> Value {
         Value::Record(vals.iter().map(|&x| Value::Num(x as f32)).collect())
     }
+
+    /// [`Value::reset_from`] that also reuses records where the shapes differ: a record
+    /// of another length (or a value that is no record) is exchanged for one of the right
+    /// length from `pool` ([`Spares`]), and the replaced record goes back into it. A value
+    /// copied into a slot another routine left there, or into a slot a RETURN emptied,
+    /// allocates nothing once the pool holds records of its shape.
+    pub(crate) fn reset_pooled(&mut self, v: &Value, pool: &mut Spares) {
+        match (&mut *self, v) {
+            (Value::Num(x), Value::Num(y)) => *x = *y,
+            (_, Value::Record(b)) => {
+                let a = match self {
+                    Value::Record(a) if a.len() == b.len() => a,
+                    _ => {
+                        let old = std::mem::replace(self, Value::Record(pool.take(b.len())));
+                        pool.give_value(old);
+                        match self {
+                            Value::Record(a) => a,
+                            _ => return,
+                        }
+                    }
+                };
+                for (x, y) in a.iter_mut().zip(b.iter()) {
+                    match (x, y) {
+                        (Value::Num(x), Value::Num(y)) => *x = *y,
+                        (x, y) => x.reset_pooled(y, pool),
+                    }
+                }
+            }
+            (Value::Array(a), Value::Array(b))
+                if a.dims == b.dims && a.rank == b.rank && a.data.len() == b.data.len() =>
+            {
+                for (x, y) in a.data.iter_mut().zip(b.data.iter()) {
+                    x.reset_pooled(y, pool);
+                }
+            }
+            (me, v) => {
+                let old = std::mem::replace(me, v.clone());
+                pool.give_value(old);
+            }
+        }
+    }
+}
+
+/// Records kept for reuse: replaced records go in, and a record of a wanted length comes
+/// out without allocating while one of that length is there. Their components are left as
+/// they were: whoever takes one overwrites every component.
+#[derive(Default, Debug)]
+pub(crate) struct Spares(Vec<Box<[Value]>>);
+
+impl Spares {
+    /// Most records kept.
+    const MAX: usize = 16;
+
+    /// A record of `n` components (a kept one, else a new one of zeros).
+    #[inline]
+    pub(crate) fn take(&mut self, n: usize) -> Box<[Value]> {
+        match self.0.iter().rposition(|r| r.len() == n) {
+            Some(k) => self.0.swap_remove(k),
+            None => vec![Value::Num(0.0); n].into_boxed_slice(),
+        }
+    }
+
+    /// Keep a record (dropped when the pool is full).
+    #[inline]
+    pub(crate) fn give(&mut self, r: Box<[Value]>) {
+        if self.0.len() < Self::MAX {
+            self.0.push(r);
+        }
+    }
+
+    /// Keep `v` if it is a record (anything else is dropped).
+    #[inline]
+    pub(crate) fn give_value(&mut self, v: Value) {
+        if let Value::Record(r) = v {
+            self.give(r);
+        }
+    }
 }
 
 /// The integer a `num` holds, if it holds one that fits `i32` (the hot path of array indices

@@ -159,30 +159,50 @@ impl Copied {
         check: impl FnOnce(&Value, &Value) -> bool,
     ) -> Exec<bool> {
         match self {
-            Copied::Local(s, span) => match it.stack.get(it.bp + *s as usize) {
-                Some(Value::Absent) | None => Err(it.error(
-                    crate::interp::errnum::ERR_NOTPRES,
-                    *span,
-                    "the optional parameter was not passed",
-                )),
-                Some(v) => Ok(check(dst, v) && {
-                    dst.reset_from(v);
-                    true
-                }),
-            },
+            Copied::Local(s, span) => {
+                let Interp {
+                    stack,
+                    spare_records,
+                    bp,
+                    ..
+                } = it;
+                match stack.get(*bp + *s as usize) {
+                    Some(Value::Absent) | None => Err(it.error(
+                        crate::interp::errnum::ERR_NOTPRES,
+                        *span,
+                        "the optional parameter was not passed",
+                    )),
+                    Some(v) => Ok(check(dst, v) && {
+                        dst.reset_pooled(v, spare_records);
+                        true
+                    }),
+                }
+            }
             Copied::Global(g) => {
-                let v = it.globals.get(*g as usize).unwrap_or(&Value::Absent);
+                let Interp {
+                    globals,
+                    spare_records,
+                    ..
+                } = it;
+                let v = globals.get(*g as usize).unwrap_or(&Value::Absent);
                 Ok(check(dst, v) && {
-                    dst.reset_from(v);
+                    dst.reset_pooled(v, spare_records);
                     true
                 })
             }
-            Copied::Place(p) => p.read(it, c, |v| {
-                check(dst, v) && {
-                    dst.reset_from(v);
-                    true
-                }
-            }),
+            Copied::Place(p) => {
+                // The pool is lent out while the place is borrowed (an index evaluated
+                // meanwhile finds it empty).
+                let mut pool = std::mem::take(&mut it.spare_records);
+                let r = p.read(it, c, |v| {
+                    check(dst, v) && {
+                        dst.reset_pooled(v, &mut pool);
+                        true
+                    }
+                });
+                it.spare_records = pool;
+                r
+            }
         }
     }
 }

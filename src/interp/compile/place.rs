@@ -31,8 +31,22 @@ enum CStep {
     Elem(u8),
 }
 
+/// A place of components only of a local (`q.x`, `p.trans.z`), for the reads and writes
+/// that walk it without a loop.
+#[derive(Clone, Copy)]
+enum Short {
+    /// `slot.f`.
+    Field(u32, u16),
+    /// `slot.f.g`.
+    Field2(u32, u16, u16),
+    /// Any other place.
+    No,
+}
+
 /// A compiled place.
 pub(crate) struct CPlace {
+    /// The shape of a short place.
+    short: Short,
     root: Root,
     steps: Box<[CStep]>,
     idx: Box<[CIdx]>,
@@ -56,7 +70,13 @@ impl CPlace {
                 }
             }
         }
+        let short = match (pl.root, steps.as_slice()) {
+            (Root::Local(s), [CStep::Field(f)]) => Short::Field(s, *f),
+            (Root::Local(s), [CStep::Field(f), CStep::Field(g)]) => Short::Field2(s, *f, *g),
+            _ => Short::No,
+        };
         CPlace {
+            short,
             root: pl.root,
             steps: steps.into(),
             idx: idx.into(),
@@ -127,6 +147,26 @@ impl CPlace {
     /// place or value (the general path decides).
     #[inline(always)]
     fn fields_num(&self, it: &Interp) -> Option<f32> {
+        fn comp(v: &Value, f: u16) -> Option<&Value> {
+            match v {
+                Value::Record(fs) => fs.get(f as usize),
+                _ => None,
+            }
+        }
+        let v = match self.short {
+            Short::Field(s, f) => comp(it.stack.get(it.bp + s as usize)?, f),
+            Short::Field2(s, f, g) => comp(comp(it.stack.get(it.bp + s as usize)?, f)?, g),
+            Short::No => return self.fields_num_walk(it),
+        };
+        match v {
+            Some(Value::Num(x)) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// [`CPlace::fields_num`] of a place that is not short.
+    #[inline(always)]
+    fn fields_num_walk(&self, it: &Interp) -> Option<f32> {
         if !self.idx.is_empty() {
             return None;
         }
@@ -181,6 +221,27 @@ impl CPlace {
     /// global), to write; `None` for any other place or value (the general path decides).
     #[inline(always)]
     pub(crate) fn fields_num_mut<'a>(&self, it: &'a mut Interp) -> Option<&'a mut f32> {
+        fn comp(v: &mut Value, f: u16) -> Option<&mut Value> {
+            match v {
+                Value::Record(fs) => fs.get_mut(f as usize),
+                _ => None,
+            }
+        }
+        let bp = it.bp;
+        let v = match self.short {
+            Short::Field(s, f) => comp(it.stack.get_mut(bp + s as usize)?, f),
+            Short::Field2(s, f, g) => comp(comp(it.stack.get_mut(bp + s as usize)?, f)?, g),
+            Short::No => return self.fields_num_mut_walk(it),
+        };
+        match v {
+            Some(Value::Num(x)) => Some(x),
+            _ => None,
+        }
+    }
+
+    /// [`CPlace::fields_num_mut`] of a place that is not short.
+    #[inline(always)]
+    fn fields_num_mut_walk<'a>(&self, it: &'a mut Interp) -> Option<&'a mut f32> {
         if !self.idx.is_empty() {
             return None;
         }

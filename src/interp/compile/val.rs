@@ -283,29 +283,19 @@ fn leaves_alone(cx: &Cx, e: &Expr, root: Root) -> bool {
     }
 }
 
-/// Most records kept for reuse ([`Interp::spare_record`]).
-const SPARE_RECORDS: usize = 16;
-
 impl Interp {
     /// A record of `n` components to overwrite every component of: one a store replaced
     /// (so building a record where one was just replaced does not allocate), else a new one.
     #[inline]
     pub(crate) fn spare_record(&mut self, n: usize) -> Box<[Value]> {
-        match self.spare_records.iter().rposition(|r| r.len() == n) {
-            Some(k) => self.spare_records.swap_remove(k),
-            None => vec![Value::Num(0.0); n].into_boxed_slice(),
-        }
+        self.spare_records.take(n)
     }
 
     /// Keep a replaced value for [`Interp::spare_record`] if it is a record (anything else
     /// is dropped).
     #[inline]
     pub(crate) fn recycle(&mut self, v: Value) {
-        if let Value::Record(r) = v
-            && self.spare_records.len() < SPARE_RECORDS
-        {
-            self.spare_records.push(r);
-        }
+        self.spare_records.give_value(v);
     }
 
     /// `a + b + …` for strings: each operand appended in order, the length checked after
@@ -661,36 +651,33 @@ impl Interp {
     }
 }
 
-/// `RETURN value` in a FUNC. A record held by routine data or a parameter is copied into a
-/// spare record ([`Interp::spare_record`]).
+/// `RETURN value` in a FUNC. A record held by routine data or a value parameter is moved
+/// out of its slot, not copied: nothing reads the frame's slots after its RETURN, and the
+/// next call sets every routine data and parameter slot again (from the pool of spare
+/// records, [`crate::interp::value::Spares`], where the caller's store puts the record it
+/// replaced).
 pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
     if let ExprKind::Local(s) = value.kind
         && !cx.is_num(value)
     {
         let (s, span) = (s as usize, value.span);
         return Box::new(move |it, _| {
-            let n = match it.stack.get(it.bp + s) {
-                Some(Value::Record(r)) => r.len(),
-                Some(Value::Absent) | None => {
-                    return Err(it.error(
-                        errnum::ERR_NOTPRES,
-                        span,
-                        "the optional parameter was not passed",
-                    ));
+            let bp = it.bp;
+            match it.stack.get_mut(bp + s) {
+                Some(slot @ Value::Record(_)) => {
+                    it.ret = std::mem::replace(slot, Value::Absent);
+                    Err(Unwind::Return)
                 }
+                Some(Value::Absent) | None => Err(it.error(
+                    errnum::ERR_NOTPRES,
+                    span,
+                    "the optional parameter was not passed",
+                )),
                 Some(v) => {
                     it.ret = v.clone();
-                    return Err(Unwind::Return);
-                }
-            };
-            let mut out = it.spare_record(n);
-            if let Some(Value::Record(r)) = it.stack.get(it.bp + s) {
-                for (d, v) in out.iter_mut().zip(r.iter()) {
-                    d.reset_from(v);
+                    Err(Unwind::Return)
                 }
             }
-            it.ret = Value::Record(out);
-            Err(Unwind::Return)
         });
     }
     let v = self::value(cx, value);
