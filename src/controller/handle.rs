@@ -478,10 +478,10 @@ impl ControllerHandle {
     /// there, the moves kept, until [`Self::continue_motion`]. Returns when the robot is at
     /// rest. Refused while external guidance moves the robot (an EGM run pauses itself).
     pub fn pause_motion(&mut self) -> Result<(), PathOpError> {
+        self.path_op(PathOp::Pause)?;
         let at_rest = |s: &MotionState| !s.moving || s.held_at_rest;
         match &mut self.driver {
             Driver::Virtual(v) => {
-                v.core.path_op(PathOp::Pause)?;
                 // A ramp down from top speed lasts a few seconds at most; the bound only
                 // guards against a bug turning this into a hang.
                 for _ in 0..1_000_000 {
@@ -492,26 +492,15 @@ impl ControllerHandle {
                     let sp = v.tick(&mut self.events);
                     self.position.route(&mut self.events, from, sp.speed);
                 }
-                Ok(())
             }
             Driver::RealTime(r) => {
-                let (tx, rx) = std::sync::mpsc::sync_channel(1);
-                let gone = PathOpError::Unavailable;
-                r.control
-                    .send(Control::Path {
-                        op: PathOp::Pause,
-                        reply: tx,
-                    })
-                    .map_err(|_| gone)?;
-                rx.recv_timeout(Duration::from_secs(1))
-                    .map_err(|_| gone)??;
                 let _ = Self::settle_within(r, Duration::from_secs(30), |p| at_rest(&p.state));
                 let from = self.events.len();
                 Self::drain_rt_events(r, &mut self.events);
                 self.position.route(&mut self.events, from, 0.0);
-                Ok(())
             }
         }
+        Ok(())
     }
 
     /// The program starts again: the path [`Self::pause_motion`] held goes on.

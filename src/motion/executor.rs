@@ -112,7 +112,7 @@ pub struct Executor {
     track: Option<Track>,
     /// The planned sample of the last cycle before its path correction (the setpoint is the
     /// corrected one): where an interpolation at a path rate below 1 starts in a corrected
-    /// sequence.
+    /// sequence. Kept only while a correction is installed (no copy in the plain tick).
     planned: Option<Sample>,
     /// Joint speeds of the last cycle, deg/s.
     velocity: JointsDeg,
@@ -416,7 +416,9 @@ impl Executor {
                         .active_instr()
                         .or(self.pending_done())
                         .or(self.last_done);
-                    self.planned = Some(out.sample);
+                    if self.correction.is_some() {
+                        self.planned = Some(out.sample);
+                    }
                     match self.correct(now, &mut instr, out.sample, planned_stop, &prev) {
                         Ok(sample) => (Some(sample.q), out.at_stop_point, instr, Some(sample.tcp)),
                         Err(error) => {
