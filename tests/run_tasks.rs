@@ -572,3 +572,116 @@ ENDMODULE
         first.stdout
     );
 }
+
+/// A socket server task beside the motion task: `run` goes in real time (the client is a
+/// real process), the server's command reaches the motion task through a shared PERS, and
+/// the run ends by itself when the NORMAL tasks have.
+#[test]
+fn a_socket_server_task_beside_the_motion_task_runs_in_real_time() {
+    let port = {
+        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        l.local_addr().unwrap().port()
+    };
+    let comm = format!(
+        "MODULE comm
+  PERS num target_x := 0;
+  VAR socketdev server;
+  VAR socketdev client;
+  PROC main()
+    VAR string cmd;
+    VAR num x;
+    SocketCreate server;
+    SocketBind server, \"127.0.0.1\", {port};
+    SocketListen server;
+    TPWrite \"listening\";
+    SocketAccept server, client \\Time:=20;
+    SocketReceive client \\Str:=cmd \\Time:=20;
+    IF StrToVal(cmd, x) THEN
+      target_x := x;
+      SocketSend client \\Str:=\"ok\";
+    ELSE
+      SocketSend client \\Str:=\"error\";
+    ENDIF
+    SocketClose client;
+    SocketClose server;
+  ENDPROC
+ENDMODULE
+"
+    );
+    let motion = "MODULE main
+  PERS num target_x := 0;
+  PROC main()
+    VAR robtarget p := [[1000, 0, 800], [0, 0, 1, 0], [0, 0, 0, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]];
+    VAR clock c;
+    MoveJ p, v1000, fine, tool0;
+    ClkStart c;
+    WaitUntil target_x <> 0 \\MaxTime:=20;
+    p.trans.x := target_x;
+    MoveL p, v500, fine, tool0;
+    TPWrite \"at x \" + NumToStr(CRobT(\\Tool:=tool0).trans.x, 0);
+    TPWrite \"waited for the command: \" + ValToStr(ClkRead(c) >= 0.2);
+  ENDPROC
+ENDMODULE
+";
+    let (dir, args) = system(
+        "socket",
+        &[
+            ("T_ROB1", MOTION, motion),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let mut cmd = rapidvc!();
+    cmd.args(&args)
+        .current_dir(&dir)
+        .env("NO_COLOR", "1")
+        .env("COLUMNS", "1000");
+    let proc = Proc::spawn(cmd);
+    // The client: a real process's socket, 0.3 s after the server listens (real time: the
+    // motion task's WaitUntil waits for it on the same clock).
+    let client = std::thread::spawn(move || {
+        use std::io::{Read, Write};
+        let deadline = std::time::Instant::now() + Duration::from_secs(20);
+        let mut s = loop {
+            match std::net::TcpStream::connect(("127.0.0.1", port)) {
+                Ok(s) => break s,
+                Err(e) if std::time::Instant::now() > deadline => panic!("connect: {e}"),
+                Err(_) => std::thread::sleep(Duration::from_millis(50)),
+            }
+        };
+        std::thread::sleep(Duration::from_millis(300));
+        s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+        s.write_all(b"1250").unwrap();
+        let mut reply = [0u8; 16];
+        let n = s.read(&mut reply).unwrap();
+        String::from_utf8_lossy(&reply[..n]).to_string()
+    });
+    let ended = proc.wait(LIMIT);
+    let reply = client.join().unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!ended.timed_out);
+    assert_eq!(ended.code, Some(0), "{}\n{}", ended.stdout, ended.stderr);
+    assert_eq!(reply, "ok");
+    assert!(
+        ended.stdout.contains("[T_COMM] listening"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stdout.contains("[T_ROB1] at x 1250"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended
+            .stdout
+            .contains("[T_ROB1] waited for the command: TRUE"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stderr.contains("sockets") && ended.stderr.contains("real time"),
+        "{}",
+        ended.stderr
+    );
+}

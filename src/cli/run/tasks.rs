@@ -163,12 +163,6 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         Err(code) => return code,
     };
     let uses_sockets = tasks_use_sockets(&loaded);
-    if uses_sockets || args.realtime || args.view.needs_realtime() {
-        eprintln!(
-            "error: several tasks run in virtual time only: --realtime and programs with sockets are not supported with several tasks yet"
-        );
-        return ExitCode::from(2);
-    }
     let LoadedSystem {
         sources,
         tasks,
@@ -186,13 +180,25 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
     let system = super::system_services(&args, &config, &sources);
     let motion = tasks.iter().position(|t| t.config.motion);
     let (mut controller, egm_log_written) =
-        match start_motion_controller(&args, &tasks, &sources, &config, &signals, false) {
+        match start_motion_controller(&args, &tasks, &sources, &config, &signals, uses_sockets) {
             Ok(c) => c,
             Err(msg) => {
                 eprintln!("error: {msg}");
                 return ExitCode::from(2);
             }
         };
+    // Every task keeps the motion thread's clock: real time when it runs in real time
+    // (--realtime, an external EGM sensor, sockets without --lockstep), else virtual.
+    let realtime = match &controller {
+        Some((ctl, ..)) => ctl.is_realtime(),
+        None => args.realtime || (uses_sockets && !args.egm.lockstep),
+    };
+    if realtime && controller.is_none() && uses_sockets {
+        progress_line::clear();
+        if let Some(note) = socket_clock::note(args.realtime, args.egm.lockstep) {
+            eprintln!("{note}");
+        }
+    }
     let halt = Arc::new(AtomicBool::new(false));
     let (specs, idle_specs) = task_specs(&tasks, &idle, &config);
     let sched = Scheduler::new(
@@ -201,6 +207,10 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         Arc::clone(&halt),
         Some(Arc::clone(&interrupted)),
     );
+    if realtime {
+        // The scheduler's clock starts with the motion thread's (within a few milliseconds).
+        sched.use_real_time(Arc::new(crate::controller::MonotonicClock::new()));
+    }
     let store = SharedPers::new();
     let mut operator = Some(operator);
     let mut bodies: Vec<Box<dyn FnOnce() -> TaskEnd + Send + '_>> = Vec::new();
