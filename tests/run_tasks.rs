@@ -573,6 +573,107 @@ ENDMODULE
     );
 }
 
+/// A communication task listening on a free port of 127.0.0.1 for `secs` seconds, then
+/// (nobody came) failing with ERR_SOCK_TIMEOUT.
+fn listener_task(secs: u32) -> String {
+    let port = {
+        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        l.local_addr().unwrap().port()
+    };
+    format!(
+        "MODULE comm
+  VAR socketdev server;
+  VAR socketdev client;
+  PROC main()
+    SocketCreate server;
+    SocketBind server, \"127.0.0.1\", {port};
+    SocketListen server;
+    TPWrite \"listening\";
+    SocketAccept server, client \\Time:={secs};
+  ENDPROC
+ENDMODULE
+"
+    )
+}
+
+/// A motion task printing its clock every 0.5 s, five times.
+const TICKS: &str = "MODULE main
+  PROC main()
+    VAR clock c;
+    ClkStart c;
+    FOR i FROM 1 TO 5 DO
+      WaitTime 0.5;
+      TPWrite \"tick \" + NumToStr(ClkRead(c), 1);
+    ENDFOR
+  ENDPROC
+ENDMODULE
+";
+
+/// A task waiting in a socket instruction blocks only itself: the motion task goes on.
+#[test]
+fn a_task_waiting_on_a_socket_lets_the_others_run() {
+    let comm = listener_task(4);
+    let ended = run_system(
+        "sockwait",
+        &[
+            ("T_ROB1", MOTION, TICKS),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    // The ticks come while T_COMM waits in SocketAccept (4 s), then its time-out stops
+    // the run.
+    for t in ["0.5", "1.0", "1.5", "2.0", "2.5"] {
+        assert!(
+            ended.stdout.contains(&format!("[T_ROB1] tick {t}")),
+            "{}",
+            ended.stdout
+        );
+    }
+    assert!(
+        ended.stderr.contains("ERR_SOCK_TIMEOUT"),
+        "{}",
+        ended.stderr
+    );
+    assert_eq!(ended.code, Some(1));
+}
+
+/// Ctrl-C during a socket wait of one task stops every task at once (exit 130).
+#[test]
+fn ctrl_c_during_a_socket_wait_of_one_task_stops_the_run_at_once() {
+    let comm = listener_task(30);
+    let (dir, args) = system(
+        "sockint",
+        &[
+            ("T_ROB1", MOTION, TICKS),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let mut cmd = rapidvc!();
+    cmd.args(&args).current_dir(&dir).env("NO_COLOR", "1");
+    let mut proc = Proc::spawn(cmd);
+    assert_eq!(
+        proc.next_line(Duration::from_secs(20)).as_deref(),
+        Some("[T_COMM] listening")
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &proc.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    // Well before the 30 s of the SocketAccept.
+    let ended = proc.wait(Duration::from_secs(10));
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!ended.timed_out, "the run did not end after SIGINT");
+    assert_eq!(ended.code, Some(130), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("interrupted by Ctrl-C"),
+        "{}",
+        ended.stderr
+    );
+}
+
 /// A socket server task beside the motion task: `run` goes in real time (the client is a
 /// real process), the server's command reaches the motion task through a shared PERS, and
 /// the run ends by itself when the NORMAL tasks have.

@@ -992,6 +992,14 @@ impl Host for TaskedHost {
         self.inner.system()
     }
 
+    fn system_blocking(&mut self, f: &mut dyn FnMut(&mut crate::system::Services)) -> bool {
+        // Blocked outside the scheduler (real time): the other tasks run meanwhile.
+        let done = self.unscheduled(|h| h.inner.system_blocking(f));
+        // A Ctrl-C is seen here too (a socket wait never waits on the scheduler's clock).
+        self.task.sched.check_outside();
+        done
+    }
+
     fn position_events(&mut self) -> Option<&mut dyn crate::interp::host::PositionEventHost> {
         if self.motion {
             self.inner.position_events()

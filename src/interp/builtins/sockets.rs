@@ -141,6 +141,28 @@ fn sock_err(cx: &Ctx<'_>, e: SocketError) -> Unwind {
 /// Run `f` on the host's sockets.
 fn with<T>(cx: &mut Ctx<'_>, f: impl FnOnce(&mut Sockets) -> Result<T, SocketError>) -> Exec<T> {
     let r = cx.host().system().map(|sys| f(&mut sys.sockets));
+    outcome(cx, r)
+}
+
+/// [`with`] for a call that may block for up to [`crate::system::sockets::WAIT_SLICE`]:
+/// the host lets its other tasks run meanwhile (`Host::system_blocking`).
+fn with_blocking<T>(
+    cx: &mut Ctx<'_>,
+    f: impl FnOnce(&mut Sockets) -> Result<T, SocketError>,
+) -> Exec<T> {
+    let mut f = Some(f);
+    let mut r = None;
+    cx.host().system_blocking(&mut |sys| {
+        if let Some(f) = f.take() {
+            r = Some(f(&mut sys.sockets));
+        }
+    });
+    outcome(cx, r)
+}
+
+/// The RAPID side of a sockets call: its value, its RAPID error, or "not supported" when
+/// the host has no sockets (`None`).
+fn outcome<T>(cx: &mut Ctx<'_>, r: Option<Result<T, SocketError>>) -> Exec<T> {
     match r {
         Some(Ok(v)) => Ok(v),
         Some(Err(e)) => Err(sock_err(cx, e)),
@@ -163,7 +185,7 @@ fn wait<T>(
     mut step: impl FnMut(&mut Sockets, &Deadline) -> Result<Option<T>, SocketError>,
 ) -> Exec<T> {
     loop {
-        if let Some(v) = with(cx, |s| step(s, &deadline))? {
+        if let Some(v) = with_blocking(cx, |s| step(s, &deadline))? {
             return Ok(v);
         }
         if deadline.passed() {
