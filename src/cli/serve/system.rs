@@ -181,7 +181,7 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         .filter_map(|t| t.program.as_deref())
         .any(run::socket_clock::uses_sockets);
     let (mut controller, egm_log_written) =
-        match start_motion_controller(a, &tasks, &sources, &config, &signals, uses_sockets) {
+        match start_motion_controller(a, &tasks, &sources, &config, &signals, uses_sockets, None) {
             Ok(c) => c,
             Err(msg) => {
                 eprintln!("error: {msg}");
