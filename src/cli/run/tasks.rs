@@ -230,6 +230,9 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         // The scheduler's clock starts with the motion thread's (within a few milliseconds).
         sched.use_real_time(Arc::new(crate::controller::MonotonicClock::new()));
     }
+    if let Some((ctl, ..)) = controller.as_mut() {
+        sched.use_robot(ctl.state().setpoint.joints, ctl.position_cell());
+    }
     let session = view.as_ref().map(super::view_options::ViewRun::session);
     let store = SharedPers::new();
     let mut operator = Some(operator);
@@ -329,7 +332,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                     )
                 }
             };
-            finish_task(&mut it, end, announce)
+            finish_task(&mut it, end, announce, &sched)
         }));
     }
     let ends = run_tasks(&sched, bodies);
@@ -540,7 +543,7 @@ fn run_task(
 
 /// After a task's program: an EGM run still active ends, the motion task's controller
 /// finishes its moves (when the program ended normally) and prints its summary.
-fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool) -> TaskEnd {
+fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool, sched: &Scheduler) -> TaskEnd {
     if let Some(egm_host) = it.host_mut().egm()
         && let Err(e) = egm_host.egm_program_stopped()
     {
@@ -562,6 +565,8 @@ fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool) -> TaskEnd {
         end.egm = host.take_egm();
         match host.finish(end.drain) {
             Ok(summary) => {
+                // The tasks still running read the robot where it came to rest.
+                sched.robot_rests_at(summary.final_joints);
                 if moved || announce {
                     print_summary(&summary);
                 }

@@ -251,6 +251,9 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         Some(Arc::clone(shutdown)),
     );
     sched.use_real_time(clock);
+    if let Some((ctl, ..)) = controller.as_mut() {
+        sched.use_robot(ctl.state().setpoint.joints, ctl.position_cell());
+    }
     sched.use_external_queues(Arc::new(DipcBridge {
         state: Arc::downgrade(&state),
         names: Mutex::new(Vec::new()),

@@ -152,11 +152,15 @@ fn with_blocking<T>(
 ) -> Exec<T> {
     let mut f = Some(f);
     let mut r = None;
+    // The other tasks may run meanwhile: they see this task's shared persistents, and this
+    // task sees what they wrote (as around any wait).
+    cx.it.publish_shared();
     cx.host().system_blocking(&mut |sys| {
         if let Some(f) = f.take() {
             r = Some(f(&mut sys.sockets));
         }
     });
+    cx.it.fetch_shared();
     outcome(cx, r)
 }
 
@@ -184,6 +188,11 @@ fn wait<T>(
     time: f64,
     mut step: impl FnMut(&mut Sockets, &Deadline) -> Result<Option<T>, SocketError>,
 ) -> Exec<T> {
+    // What can be done at once (data already there, room to send) is done without waiting
+    // and without handing the processor to the other tasks.
+    if let Some(v) = with(cx, |s| step(s, &Deadline::after_secs(0.0)))? {
+        return Ok(v);
+    }
     loop {
         if let Some(v) = with_blocking(cx, |s| step(s, &deadline))? {
             return Ok(v);
