@@ -880,11 +880,14 @@ ENDMODULE
 
 /// In virtual time a task sharing the robot's mechanical unit group reads where the robot is
 /// at its own time (the motion task hands over at every deadline); a task without a group
-/// cannot read it.
+/// cannot read it. (The motion task's path instructions work as with one task.)
 #[test]
 fn cjointt_in_a_task_of_the_robots_group_reads_the_robot_at_that_time() {
     let motion = "MODULE main
   PROC main()
+    StopMove;
+    ClearPath;
+    StartMove;
     MoveAbsJ [[60, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v100 \\T:=1, fine, tool0;
   ENDPROC
 ENDMODULE
