@@ -940,3 +940,96 @@ ENDMODULE
         ended.stderr
     );
 }
+
+/// EIO.cfg's system outputs follow the controller: motors on, the cycle and each task
+/// running, the robot standing still or moving; a status rapidvc does not drive is a
+/// warning naming it, one on a signal that is no DO an error.
+#[test]
+fn system_outputs_follow_the_tasks_and_the_robot() {
+    const EIO: &str = "EIO:CFG_1.0:6:1::
+#
+EIO_SIGNAL:
+      -Name \"doMotOn\" -SignalType \"DO\"
+      -Name \"doCycle\" -SignalType \"DO\"
+      -Name \"doRob\" -SignalType \"DO\"
+      -Name \"doLog\" -SignalType \"DO\"
+      -Name \"doStill\" -SignalType \"DO\"
+      -Name \"doEStop\" -SignalType \"DO\" -Default 1
+      -Name \"doRunch\" -SignalType \"DO\"
+#
+SYSSIG_OUT:
+      -Status \"MotOnState\" -Signal \"doMotOn\"
+      -Status \"CycleOn\" -Signal \"doCycle\"
+      -Status \"TaskExecuting\" -Signal \"doRob\" -Arg2 \"T_ROB1\"
+      -Status \"TaskExecuting\" -Signal \"doLog\" -Arg2 \"T_LOG\"
+      -Status \"MechUnitNotMoving\" -Signal \"doStill\" -Arg1 \"ROB_1\"
+      -Status \"EmStop\" -Signal \"doEStop\"
+      -Status \"RunchOk\" -Signal \"doRunch\"
+";
+    let motion = "MODULE main
+  FUNC string outs()
+    RETURN NumToStr(DOutput(doMotOn), 0) + NumToStr(DOutput(doCycle), 0)
+      + NumToStr(DOutput(doRob), 0) + NumToStr(DOutput(doLog), 0)
+      + NumToStr(DOutput(doEStop), 0) + NumToStr(DOutput(doRunch), 0);
+  ENDFUNC
+  PROC main()
+    TPWrite \"outputs \" + outs();
+    TPWrite \"standing: \" + NumToStr(DOutput(doStill), 0);
+    MoveAbsJ [[60, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v1000, z50, tool0;
+    WaitTime 0.2;
+    TPWrite \"moving: \" + NumToStr(DOutput(doStill), 0) + \", T_LOG ended: \" + NumToStr(DOutput(doLog), 0);
+    MoveAbsJ [[0, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v1000, fine, tool0;
+    WaitTime 0.1;
+    TPWrite \"standing again: \" + NumToStr(DOutput(doStill), 0);
+  ENDPROC
+ENDMODULE
+";
+    let log = "MODULE log
+  PROC main()
+    WaitTime 0.1;
+  ENDPROC
+ENDMODULE
+";
+    let (dir, args) = system(
+        "sysout",
+        &[
+            ("T_ROB1", MOTION, motion),
+            ("T_LOG", "-Type \"NORMAL\"", log),
+        ],
+    );
+    std::fs::write(dir.join("EIO.cfg"), EIO).unwrap();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let ended = run_in(&dir, &args);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    for line in [
+        "[T_ROB1] outputs 111101",
+        "[T_ROB1] standing: 1",
+        "[T_ROB1] moving: 0, T_LOG ended: 0",
+        "[T_ROB1] standing again: 1",
+    ] {
+        assert!(ended.stdout.contains(line), "{line}:\n{}", ended.stdout);
+    }
+    // Not driven: a warning naming it; on no DO: an error before the run.
+    let eio = EIO.replace("\"RunchOk\"", "\"SimMode\"");
+    std::fs::write(dir.join("EIO.cfg"), eio).unwrap();
+    let ended = run_in(&dir, &args);
+    assert!(
+        ended
+            .stderr
+            .contains("the system output `SimMode` is not simulated by rapidvc"),
+        "{}",
+        ended.stderr
+    );
+    let eio = EIO.replace("-Signal \"doRunch\"", "-Signal \"doNothing\"");
+    std::fs::write(dir.join("EIO.cfg"), eio).unwrap();
+    let ended = run_in(&dir, &args);
+    assert_eq!(ended.code, Some(2), "{}", ended.stdout);
+    assert!(
+        ended
+            .stderr
+            .contains("drives `doNothing`, which is not a digital output"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

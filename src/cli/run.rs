@@ -249,6 +249,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let tee = view.as_ref().map(view_options::ViewRun::session);
+    let outputs = system_outputs(&loaded.config, &signals);
     let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
@@ -273,6 +274,12 @@ pub fn run(args: RunArgs) -> ExitCode {
     it.set_operator(operator);
     // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
     it.set_stack_budget(6 << 20);
+    if let Some(o) = &outputs {
+        o.show(&run_output_state(
+            vec![crate::config::sys::DEFAULT_TASK.to_string()],
+            false,
+        ));
+    }
     let (mut code, drain) = match it.init() {
         Err(e) => {
             render::runtime_error(&e, &sources);
@@ -299,6 +306,9 @@ pub fn run(args: RunArgs) -> ExitCode {
         progress_line::clear();
         eprintln!("error: {e}");
         code = ExitCode::from(1);
+    }
+    if let Some(o) = &outputs {
+        o.show(&run_output_state(Vec::new(), code != ExitCode::SUCCESS));
     }
     if code == ExitCode::SUCCESS
         && let Some(w) = answers::unused_warning(it.operator())
@@ -617,6 +627,9 @@ pub(super) fn start_controller(
     if let Some(v) = view {
         sinks.push(v.sink(uses_egm.then(|| feed.subscribe())));
     }
+    if let Some(sink) = system_outputs(cfg, signals).and_then(|o| o.motion_sink()) {
+        sinks.push(sink);
+    }
     if std::io::stderr().is_terminal() {
         sinks.push(Box::new(progress_line::ProgressLine::new(Arc::clone(
             sources,
@@ -693,6 +706,29 @@ pub(super) fn start_controller(
     ControllerHandle::start_with_hook(config, sinks, hook)
         .map(|c| (c, egm_controller, log_written, false))
         .map_err(|e| start_error(&e))
+}
+
+/// The system outputs of the configuration's EIO.cfg on `signals`, if it has any.
+pub(crate) fn system_outputs(
+    cfg: &crate::config::Config,
+    signals: &Arc<crate::signals::SignalTable>,
+) -> Option<crate::controller::system_outputs::SystemOutputs> {
+    let eio = cfg.eio.as_ref()?;
+    crate::controller::system_outputs::SystemOutputs::new(&eio.system_outputs, signals)
+}
+
+/// What the system outputs show while a `rapidvc run` goes on (`running`: its tasks) or
+/// after it ended (`error`: on an error).
+pub(crate) fn run_output_state(
+    running: Vec<String>,
+    error: bool,
+) -> crate::controller::system_outputs::OutputState {
+    crate::controller::system_outputs::OutputState {
+        motors_on: true,
+        auto: true,
+        running,
+        error,
+    }
 }
 
 fn start_error(e: &ControllerError) -> String {

@@ -233,6 +233,22 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
     if let Some((ctl, ..)) = controller.as_mut() {
         sched.use_robot(ctl.state().setpoint.joints, ctl.position_cell());
     }
+    let outputs = super::system_outputs(&config, &signals);
+    // The tasks still running, for the system outputs (a task leaves when its body ends).
+    let running = std::sync::Mutex::new(
+        tasks
+            .iter()
+            .filter(|t| t.program.is_some())
+            .map(|t| t.config.name.clone())
+            .collect::<Vec<_>>(),
+    );
+    let (running, outputs) = (&running, &outputs);
+    let show_running = move |error: bool| {
+        if let (Some(o), Ok(r)) = (outputs, running.lock()) {
+            o.show(&super::run_output_state(r.clone(), error));
+        }
+    };
+    show_running(false);
     let session = view.as_ref().map(super::view_options::ViewRun::session);
     let store = SharedPers::new();
     let mut operator = Some(operator);
@@ -332,7 +348,12 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                     )
                 }
             };
-            finish_task(&mut it, end, announce, &sched)
+            let end = finish_task(&mut it, end, announce, &sched);
+            if let Ok(mut r) = running.lock() {
+                r.retain(|t| *t != name);
+            }
+            show_running(false);
+            end
         }));
     }
     let ends = run_tasks(&sched, bodies);
@@ -343,6 +364,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         egm_log_written,
     );
     let was_interrupted = interrupted.load(Ordering::Relaxed);
+    show_running(code != ExitCode::SUCCESS);
     if let Some(v) = view {
         let ended = if was_interrupted {
             "program stopped by Ctrl-C"

@@ -202,6 +202,9 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         Arc::clone(shutdown),
         calendar,
     ));
+    if let Some(o) = run::system_outputs(&config, &signals) {
+        state.attach_outputs(Arc::new(o));
+    }
     let kind = |k: crate::config::sys::TaskType| match k {
         crate::config::sys::TaskType::Normal => TaskType::Normal,
         crate::config::sys::TaskType::Static => TaskType::Static,

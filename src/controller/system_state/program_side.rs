@@ -322,6 +322,7 @@ impl ProgramSide {
             self.last_poll = Instant::now();
             self.publish_pers(it, false);
             self.update_robot(it);
+            self.state.show_outputs();
             // EGM tells its sensors whether the program runs and the motors are on.
             let (running, motors) = (self.runs(), self.state.ctrl_state() == CtrlState::MotorsOn);
             if let Some(h) = host(it) {
