@@ -504,13 +504,18 @@ fn assign_nums(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
             && r.iter().all(|v| matches!(v, Value::Num(_)))
         {
             for (v, x) in r.iter_mut().zip(xs) {
-                *v = Value::Num(*x);
+                if let Value::Num(v) = v {
+                    *v = *x;
+                }
             }
             return Ok(());
         }
         let mut out = it.spare_record(xs.len());
         for (v, x) in out.iter_mut().zip(xs) {
-            *v = Value::Num(*x);
+            match v {
+                Value::Num(v) => *v = *x,
+                v => *v = Value::Num(*x),
+            }
         }
         sink.put(it, c, Value::Record(out))
     }))
@@ -611,7 +616,7 @@ impl Interp {
 
     /// The slot of a local or global.
     #[inline(always)]
-    fn root_slot(&mut self, root: Root) -> Option<&mut Value> {
+    pub(super) fn root_slot(&mut self, root: Root) -> Option<&mut Value> {
         match root {
             Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
             Root::Global(g) => self.globals.get_mut(g as usize),
@@ -665,7 +670,8 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
             let bp = it.bp;
             match it.stack.get_mut(bp + s) {
                 Some(slot @ Value::Record(_)) => {
-                    it.ret = std::mem::replace(slot, Value::Absent);
+                    let v = std::mem::replace(slot, Value::Absent);
+                    it.set_ret(v);
                     Err(Unwind::Return)
                 }
                 Some(Value::Absent) | None => Err(it.error(
@@ -674,7 +680,8 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
                     "the optional parameter was not passed",
                 )),
                 Some(v) => {
-                    it.ret = v.clone();
+                    let v = v.clone();
+                    it.set_ret(v);
                     Err(Unwind::Return)
                 }
             }
@@ -682,7 +689,18 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
     }
     let v = self::value(cx, value);
     Box::new(move |it, c| {
-        it.ret = v(it, c)?;
+        let v = v(it, c)?;
+        it.set_ret(v);
         Err(Unwind::Return)
     })
+}
+
+impl Interp {
+    /// Make `v` the FUNC's result (what the slot held, a scalar or nothing after the last
+    /// call's result was taken, goes to the pool of spare records or is let go).
+    #[inline(always)]
+    fn set_ret(&mut self, v: Value) {
+        let old = std::mem::replace(&mut self.ret, v);
+        self.recycle(old);
+    }
 }
