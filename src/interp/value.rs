@@ -57,6 +57,19 @@ impl RStr {
         }
     }
 
+    /// Make the text the one ASCII character `b`: in place when this value alone holds
+    /// its text, else in a text of its own (which the next write reuses).
+    #[inline]
+    pub fn set_ascii(&mut self, b: u8) {
+        match self.unique_mut() {
+            Some(t) => {
+                t.clear();
+                t.push(char::from(b));
+            }
+            None => *self = RStr::from(String::from(char::from(b))),
+        }
+    }
+
     /// The text.
     #[inline(always)]
     pub fn as_str(&self) -> &str {

@@ -165,7 +165,7 @@ impl StrPart {
     pub(crate) fn append(&self, it: &mut Interp, c: &Code, buf: &mut String) -> Exec<()> {
         match self {
             StrPart::Text(f) => f(it, c, buf),
-            _ => self.with(it, c, |s| buf.push_str(s)),
+            _ => self.with(it, c, |s| super::strfast::push_text(buf, s)),
         }
     }
 
@@ -340,15 +340,15 @@ pub(crate) fn str_eq(cx: &Cx, a: &Expr, b: &Expr, eq: bool) -> Option<super::Boo
     // Against a constant, nothing needs to be copied.
     if let StrPart::Lit(k) = &b {
         let k = k.clone();
-        return Some(Box::new(
-            move |it, c| Ok(a.with(it, c, |s| s == &*k)? == eq),
-        ));
+        return Some(Box::new(move |it, c| {
+            Ok(a.with(it, c, |s| super::strfast::eq_text(s, &k))? == eq)
+        }));
     }
     if let StrPart::Lit(k) = &a {
         let k = k.clone();
-        return Some(Box::new(
-            move |it, c| Ok(b.with(it, c, |s| s == &*k)? == eq),
-        ));
+        return Some(Box::new(move |it, c| {
+            Ok(b.with(it, c, |s| super::strfast::eq_text(s, &k))? == eq)
+        }));
     }
     Some(Box::new(move |it, c| {
         let mut tmp = it.strbufs.pop().unwrap_or_default();
@@ -564,7 +564,9 @@ fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
             }
             [] => false,
         };
-    Some(match src {
+    let root = sink.root();
+    let spine = concat_spine(value);
+    let f: StmtFn = match src {
         Src::Concat(parts) if appends => Box::new(move |it, c| {
             match it.text_in_place(sink.root(), |it, t| it.concat_into(c, &parts, 1, t)) {
                 Some(r) => r,
@@ -577,6 +579,12 @@ fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
         Src::Part(p) => {
             Box::new(move |it, c| it.store_text(c, &sink, |it, buf| p.append(it, c, buf)))
         }
+    };
+    // The shapes `strfast` runs without the general machinery when it can.
+    Some(match (root, spine.as_slice()) {
+        (Some(root), [_, (x, _)]) if appends => super::strfast::append(cx, root, x, f),
+        (Some(root), _) => super::strfast::part(cx, root, value, f),
+        (None, _) => f,
     })
 }
 
