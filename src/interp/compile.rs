@@ -400,7 +400,7 @@ impl<'p> Cx<'p> {
                     })
                 })
                 .collect();
-            return flow::Cases::num_consts((num::num(self, subject), subject.span), vals);
+            return flow::Cases::num_consts((num::opnd(self, subject), subject.span), vals);
         }
         if self.is_num(subject) && all(&|e| self.is_num(e)) {
             let vals = cases

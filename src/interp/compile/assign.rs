@@ -2,7 +2,7 @@
 //! `RETURN …` in a `FUNC num`), fused with the expression's top operation so that the
 //! statement is a single closure.
 
-use super::num::{Elem, Src, bin, opnd, typed_left, typed_right};
+use super::num::{Elem, GElemL, Src, bin, opnd, typed_copy, typed_left, typed_right};
 use super::place::CPlace;
 use super::{Code, Cx, StmtFn};
 use crate::interp::Interp;
@@ -57,10 +57,7 @@ impl Sink {
                 Some(slot) => *slot = x,
                 None => return it.store(&c.prog, pl, Value::Num(x)),
             },
-            Sink::Place(pl) => match pl.fields_num_mut(it) {
-                Some(slot) => *slot = x,
-                None => return pl.store(it, c, Value::Num(x)),
-            },
+            Sink::Place(pl) => return pl.put_num(it, c, x),
             Sink::Return => {
                 match &mut it.ret {
                     Value::Num(r) => *r = x,
@@ -96,6 +93,20 @@ impl Put for LocalSink {
             Some(Value::Num(old)) => *old = x,
             Some(other) => *other = Value::Num(x),
             None => return it.store(&c.prog, &self.1, Value::Num(x)),
+        }
+        Ok(())
+    }
+}
+
+/// `g{i}` of a global array and a local index, as its own type.
+struct GElemLSink(u32, u32, Place);
+
+impl Put for GElemLSink {
+    #[inline(always)]
+    fn put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        match GElemL::num_mut(it, self.0, self.1) {
+            Some(slot) => *slot = x,
+            None => return it.store(&c.prog, &self.2, Value::Num(x)),
         }
         Ok(())
     }
@@ -148,9 +159,14 @@ pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
             match sink {
                 Sink::Local(s, pl) => {
                     let sink = LocalSink(s, pl);
-                    typed_right!(a, |a| copy_into(a, vs, sink))
+                    typed_copy!(a, |a| copy_into(a, vs, sink))
                 }
-                sink => typed_right!(a, |a| copy_into(a, vs, sink)),
+                Sink::Elem(el, pl) if el.global_local().is_some() => {
+                    let (g, s) = el.global_local().unwrap_or_default();
+                    let sink = GElemLSink(g, s, pl);
+                    typed_copy!(a, |a| copy_into(a, vs, sink))
+                }
+                sink => typed_copy!(a, |a| copy_into(a, vs, sink)),
             }
         }
     }

@@ -51,14 +51,7 @@ pub(crate) fn cond(cx: &Cx, e: &Expr) -> BoolFn {
             let a = cond(cx, a);
             Box::new(move |it, c| Ok(!a(it, c)?))
         }
-        ExprKind::Local(s) => {
-            let s = *s as usize;
-            let e = e.clone();
-            Box::new(move |it, c| match it.stack.get(it.bp + s) {
-                Some(Value::Bool(b)) => Ok(*b),
-                _ => it.eval_bool(&c.prog, &e),
-            })
-        }
+        ExprKind::Local(_) => with_cond(cx, e, Boxed),
         _ => fallback(e),
     }
 }
@@ -98,6 +91,19 @@ impl WithCond for Boxed {
     type Out = BoolFn;
     fn with<C: Cond>(self, cond: C) -> BoolFn {
         Box::new(move |it, c| cond.test(it, c))
+    }
+}
+
+/// A `bool` local (any other value: the tree-walking engine's evaluation of the expression).
+pub(crate) struct BoolLocal(u32, Expr);
+
+impl Cond for BoolLocal {
+    #[inline(always)]
+    fn test(&self, it: &mut Interp, c: &Code) -> Exec<bool> {
+        match it.stack.get(it.bp + self.0 as usize) {
+            Some(Value::Bool(b)) => Ok(*b),
+            _ => it.eval_bool(&c.prog, &self.1),
+        }
     }
 }
 
@@ -142,6 +148,9 @@ impl<A: Src, B: Src, const OP: u8> Cond for Cmp<A, B, OP> {
 /// `w` built around condition `e`: a `num` comparison with its operands typed (locals,
 /// constants, `MOD`/`DIV` of a local by a constant), anything else as a closure.
 pub(crate) fn with_cond<W: WithCond>(cx: &Cx, e: &Expr, w: W) -> W::Out {
+    if let ExprKind::Local(s) = e.kind {
+        return w.with(BoolLocal(s, e.clone()));
+    }
     let ExprKind::Binary(op, a, b) = &e.kind else {
         return w.with(cond(cx, e));
     };

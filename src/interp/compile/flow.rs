@@ -2,6 +2,7 @@
 //! engine (`Interp::run_block`, `Interp::for_loop`, `Interp::test_case` in `stmt.rs`).
 
 use super::cond::{Cond, WithCond};
+use super::num::{Opnd, Src};
 use super::val::StrPart;
 use super::{CBlock, Code, NumFn, StmtFn};
 use crate::interp::Interp;
@@ -79,7 +80,7 @@ impl Cases {
     /// The cases of a `num` subject with constant values: a table when they are integers
     /// in a small range (a CASE listed earlier wins, as in the search in order), else the
     /// values in order.
-    pub(crate) fn num_consts(subject: SpannedNum, vals: Vec<(f32, usize)>) -> Cases {
+    pub(crate) fn num_consts(subject: SpannedOpnd, vals: Vec<(f32, usize)>) -> Cases {
         let ints: Option<Vec<(i64, usize)>> = vals
             .iter()
             .map(|&(x, k)| (x.fract() == 0.0 && x.abs() < 1e9).then_some((x as i64, k)))
@@ -109,13 +110,16 @@ impl Cases {
 /// A compiled `num` and its span.
 pub(crate) type SpannedNum = (NumFn, Span);
 
+/// A `num` operand (read inline when it is a local or a constant) and its span.
+pub(crate) type SpannedOpnd = (Opnd, Span);
+
 /// The subject of a TEST and its case values, one list per CASE.
 pub(crate) enum Cases {
     /// A `num` subject with constant case values: (value, index of its CASE), in order.
-    NumK(SpannedNum, Box<[(f32, usize)]>),
+    NumK(SpannedOpnd, Box<[(f32, usize)]>),
     /// A `num` subject with integer constant case values in a small range: the CASE of
     /// `lo + i` at `i` ([`NO_CASE`] for none).
-    Table(SpannedNum, i32, Box<[u32]>),
+    Table(SpannedOpnd, i32, Box<[u32]>),
     /// A `num` subject with `num` case values, compared as numbers.
     Num(SpannedNum, Box<[Box<[SpannedNum]>]>),
     /// A string subject (read in place) with constant case strings.
@@ -148,6 +152,17 @@ impl Interp {
         }
     }
 
+    /// A `num` operand evaluated, or its pending error at `span`.
+    #[inline(always)]
+    fn copnd(&mut self, c: &Code, f: &SpannedOpnd) -> Exec<f32> {
+        let x = f.0.get(self, c);
+        if x.is_nan() {
+            Err(self.take_pending(f.1))
+        } else {
+            Ok(x)
+        }
+    }
+
     pub(crate) fn exec_cfor(&mut self, c: &Code, f: &CFor) -> Exec<()> {
         let a = self.cnum(c, &f.from)?;
         let b = self.cnum(c, &f.to)?;
@@ -166,11 +181,11 @@ impl Interp {
         let p = &*c.prog;
         let hit = match &t.cases {
             Cases::NumK(subject, vals) => {
-                let x = self.cnum(c, subject)?;
+                let x = self.copnd(c, subject)?;
                 vals.iter().find(|(v, _)| *v == x).map(|(_, k)| *k)
             }
             Cases::Table(subject, lo, table) => {
-                let x = self.cnum(c, subject)?;
+                let x = self.copnd(c, subject)?;
                 // Only an integer can equal a case value (NaN has been refused above).
                 let i = (x as i64).checked_sub(i64::from(*lo)).unwrap_or(-1);
                 match usize::try_from(i) {

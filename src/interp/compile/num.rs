@@ -28,6 +28,9 @@ pub(crate) enum Leaf {
     F(u32, u16, u16, Span),
     /// Any other place holding a `num`, and the expression's span.
     P(Box<(CPlace, Span)>),
+    /// `a{i}` of a local or global array with a computed `num` index (read out of line),
+    /// and the expression's span.
+    X(Box<(CPlace, Span)>),
 }
 
 /// No second component in [`Leaf::F`].
@@ -92,7 +95,13 @@ impl Leaf {
             ExprKind::Load(pl) => match (Elem::of(pl), local_field(cx, e, pl)) {
                 (Some(el), _) => Leaf::E(Box::new((el, e.clone()))),
                 (None, Some((s, f, g))) => Leaf::F(s, f, g, e.span),
-                (None, None) if cx.is_num(e) => Leaf::P(Box::new((CPlace::new(cx, pl), e.span))),
+                (None, None) if cx.is_num(e) => {
+                    let p = CPlace::new(cx, pl);
+                    match p.is_elem1() {
+                        true => Leaf::X(Box::new((p, e.span))),
+                        false => Leaf::P(Box::new((p, e.span))),
+                    }
+                }
                 (None, None) => return None,
             },
             _ => return None,
@@ -118,6 +127,7 @@ impl Leaf {
                 None => it.field_slow(c, *s, *f, *g, *span),
             },
             Leaf::P(b) => b.0.num(it, c, b.1),
+            Leaf::X(b) => b.0.elem1_num(it, c, b.1),
         }
     }
 }
@@ -280,7 +290,6 @@ macro_rules! typed_right {
         }
     };
 }
-pub(crate) use {typed_left, typed_right};
 
 /// `a` then `b` (stopping at the first failure), then `f` on both values.
 #[inline(always)]
@@ -394,6 +403,85 @@ impl Elem {
         }
     }
 }
+
+impl Elem {
+    /// The global array and the local index slot of `g{i}`, when the element has this
+    /// shape (the module `num` arrays of a program indexed by a routine's counter).
+    pub(crate) fn global_local(&self) -> Option<(u32, u32)> {
+        match (self.root, self.idx) {
+            (Root::Global(g), Idx::L(s)) => Some((g, s)),
+            _ => None,
+        }
+    }
+}
+
+/// The 0-based offset of `g{i}` for a local index `i` holding an integer ≥ 1 (`None`:
+/// the general path decides, with its errors).
+#[inline(always)]
+fn local_offset(it: &Interp, s: u32) -> Option<usize> {
+    match it.stack.get(it.bp + s as usize) {
+        Some(Value::Num(x)) => usize::try_from(f32_int(*x)?).ok()?.checked_sub(1),
+        _ => None,
+    }
+}
+
+/// `g{i}` of a global 1-D `num` array and a local index, read inline as its own type; the
+/// load expression for the general path.
+pub(crate) struct GElemL(pub u32, pub u32, pub Box<Expr>);
+
+impl GElemL {
+    /// The element, for writing, when the fast path applies.
+    #[inline(always)]
+    pub(crate) fn num_mut(it: &mut Interp, g: u32, s: u32) -> Option<&mut f32> {
+        let o = local_offset(it, s)?;
+        match it.globals.get_mut(g as usize) {
+            Some(Value::Array(a)) if a.rank == 1 && o < a.dims[0] as usize => {
+                match a.data.get_mut(o) {
+                    Some(Value::Num(x)) => Some(x),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Src for GElemL {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        if let Some(o) = local_offset(it, self.1)
+            && let Some(Value::Array(a)) = it.globals.get(self.0 as usize)
+            && a.rank == 1
+            && o < a.dims[0] as usize
+            && let Some(Value::Num(x)) = a.data.get(o)
+        {
+            return *x;
+        }
+        it.nf_cold(c, &self.2)
+    }
+}
+
+/// `$body` with `$a` bound to operand `$o` as a typed source when it is a constant, a local
+/// or an element `g{i}` of a global array with a local index (the value copied by `x := …`),
+/// else as itself.
+macro_rules! typed_copy {
+    ($o:expr, |$a:ident| $body:expr) => {
+        match $o {
+            $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::E(b))
+                if b.0.global_local().is_some() =>
+            {
+                let (el, e) = *b;
+                let (g, s) = el.global_local().unwrap_or_default();
+                let $a = $crate::interp::compile::num::GElemL(g, s, Box::new(e));
+                $body
+            }
+            o => $crate::interp::compile::num::typed_right!(o, |$a| $body),
+        }
+    };
+}
+
+pub(crate) use {typed_copy, typed_left, typed_right};
 
 /// An operand for `e`: a leaf, an operation on leaves, or a closure.
 pub(crate) fn opnd(cx: &Cx, e: &Expr) -> Opnd {

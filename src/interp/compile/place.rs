@@ -10,7 +10,7 @@ use crate::interp::errnum;
 use crate::interp::error::Exec;
 use crate::interp::place::{WalkErr, elem, elem_mut, field, field_mut, same_dims, step_mut};
 use crate::interp::value::{Value, f32_int};
-use crate::ir::{Expr, PathOp, Place, Root};
+use crate::ir::{BinOp, Expr, ExprKind, PathOp, Place, Root};
 use crate::source::Span;
 
 /// Most indices a compiled place evaluates (more fall back to the IR walk).
@@ -39,6 +39,9 @@ enum Short {
     Field(u32, u16),
     /// `slot.f.g`.
     Field2(u32, u16, u16),
+    /// `a{i}` of a local or global array with one `num` index: the element is read and
+    /// written without a walk (a 1-D array of `num`s; anything else takes the walk).
+    Elem1,
     /// Any other place.
     No,
 }
@@ -48,6 +51,9 @@ pub(crate) struct CPlace {
     /// The shape of a short place.
     short: Short,
     root: Root,
+    /// The index of an [`Short::Elem1`] place of the form `i + k` / `i - k` (`i` a local,
+    /// `k` a constant): `i`'s slot and the number added (computed without a dispatch).
+    kidx: Option<(u32, f32)>,
     steps: Box<[CStep]>,
     idx: Box<[CIdx]>,
     /// The place as lowered (for the IR walk when there are too many indices).
@@ -73,10 +79,30 @@ impl CPlace {
         let short = match (pl.root, steps.as_slice()) {
             (Root::Local(s), [CStep::Field(f)]) => Short::Field(s, *f),
             (Root::Local(s), [CStep::Field(f), CStep::Field(g)]) => Short::Field2(s, *f, *g),
+            (Root::Local(_) | Root::Global(_), [CStep::Elem(1)])
+                if matches!(idx.as_slice(), [CIdx::Num(..)]) =>
+            {
+                Short::Elem1
+            }
             _ => Short::No,
+        };
+        let kidx = match (short, &*pl.path) {
+            (Short::Elem1, [PathOp::Index(es)]) => match es.first().map(|e| &e.kind) {
+                Some(ExprKind::Binary(op @ (BinOp::NumAdd | BinOp::NumSub), a, b)) => {
+                    match (&a.kind, &b.kind) {
+                        (ExprKind::Local(s), ExprKind::Num(k)) if cx.is_num(a) => {
+                            Some((*s, if *op == BinOp::NumSub { -*k } else { *k }))
+                        }
+                        _ => None,
+                    }
+                }
+                _ => None,
+            },
+            _ => None,
         };
         CPlace {
             short,
+            kidx,
             root: pl.root,
             steps: steps.into(),
             idx: idx.into(),
@@ -156,6 +182,7 @@ impl CPlace {
         let v = match self.short {
             Short::Field(s, f) => comp(it.stack.get(it.bp + s as usize)?, f),
             Short::Field2(s, f, g) => comp(comp(it.stack.get(it.bp + s as usize)?, f)?, g),
+            Short::Elem1 => return None,
             Short::No => return self.fields_num_walk(it),
         };
         match v {
@@ -187,6 +214,129 @@ impl CPlace {
         }
     }
 
+    /// The index of an [`Short::Elem1`] place, evaluated (NaN: an error is pending), and its
+    /// span.
+    #[inline(always)]
+    fn elem1_index(&self, it: &mut Interp, c: &Code) -> (f32, Span) {
+        match self.idx.first() {
+            Some(CIdx::Num(o, span)) => {
+                // `i ± k`: a result that is not finite takes the general path, which fails
+                // with its error.
+                if let Some((s, k)) = self.kidx
+                    && let Some(Value::Num(x)) = it.stack.get(it.bp + s as usize)
+                    && (*x + k).is_finite()
+                {
+                    return (*x + k, *span);
+                }
+                (o.get(it, c), *span)
+            }
+            // Not built for other places.
+            _ => (f32::NAN, self.ir.span),
+        }
+    }
+
+    /// The 0-based offset of element `x` of a 1-D array, when `x` is an integer ≥ 1.
+    #[inline(always)]
+    fn elem1_offset(x: f32) -> Option<usize> {
+        let i = f32_int(x)?;
+        usize::try_from(i).ok()?.checked_sub(1)
+    }
+
+    /// Is this `a{i}` of a local or global array with one `num` index (see
+    /// [`CPlace::elem1_num`])?
+    pub(crate) fn is_elem1(&self) -> bool {
+        matches!(self.short, Short::Elem1)
+    }
+
+    /// `a{i}` of a [`Short::Elem1`] place: the element read in place when it is a `num`
+    /// inside the bounds of a 1-D array, else the walk with its errors (out of line, so that
+    /// the operand reads it is called from stay small).
+    #[inline(never)]
+    pub(crate) fn elem1_num(&self, it: &mut Interp, c: &Code, span: Span) -> f32 {
+        let (x, ispan) = self.elem1_index(it, c);
+        if let Some(o) = Self::elem1_offset(x) {
+            let arr = match self.root {
+                Root::Local(s) => it.stack.get(it.bp + s as usize),
+                Root::Global(g) => it.globals.get(g as usize),
+                Root::Ref(_) => None,
+            };
+            if let Some(Value::Array(a)) = arr
+                && a.rank == 1
+                && o < a.dims[0] as usize
+                && let Some(Value::Num(v)) = a.data.get(o)
+            {
+                return *v;
+            }
+        }
+        self.elem1_num_slow(it, x, ispan, span)
+    }
+
+    /// [`CPlace::elem1_num`] off the fast path: the index checked and the walk, as
+    /// [`CPlace::num_indexed`] does them.
+    #[cold]
+    #[inline(never)]
+    fn elem1_num_slow(&self, it: &mut Interp, x: f32, ispan: Span, span: Span) -> f32 {
+        let i = match f32_int(x) {
+            Some(i) => i as i64,
+            None => match it.index_of(x, ispan) {
+                Ok(i) => i,
+                Err(u) => return it.fail_nf(u),
+            },
+        };
+        self.num_at(it, &[i], span)
+    }
+
+    /// Write `x` (not NaN): a [`Short::Elem1`] element in place, a `num` component in
+    /// place, anything else through [`CPlace::store`].
+    #[inline(always)]
+    pub(crate) fn put_num(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        if let Short::Elem1 = self.short {
+            return self.elem1_put(it, c, x);
+        }
+        match self.fields_num_mut(it) {
+            Some(slot) => {
+                *slot = x;
+                Ok(())
+            }
+            None => self.store(it, c, Value::Num(x)),
+        }
+    }
+
+    /// [`CPlace::put_num`] of a [`Short::Elem1`] place (out of line, as
+    /// [`CPlace::elem1_num`]).
+    #[inline(never)]
+    fn elem1_put(&self, it: &mut Interp, c: &Code, x: f32) -> Exec<()> {
+        let (i, ispan) = self.elem1_index(it, c);
+        if let Some(o) = Self::elem1_offset(i) {
+            let arr = match self.root {
+                Root::Local(s) => it.stack.get_mut(it.bp + s as usize),
+                Root::Global(g) => it.globals.get_mut(g as usize),
+                Root::Ref(_) => None,
+            };
+            if let Some(Value::Array(a)) = arr
+                && a.rank == 1
+                && o < a.dims[0] as usize
+                && let Some(Value::Num(v)) = a.data.get_mut(o)
+            {
+                *v = x;
+                return Ok(());
+            }
+        }
+        self.elem1_store_slow(it, i, ispan, Value::Num(x))
+    }
+
+    /// [`CPlace::put_num`] of a [`Short::Elem1`] place off the fast path: the index checked
+    /// and the store, as [`CPlace::store`] does them.
+    #[cold]
+    #[inline(never)]
+    fn elem1_store_slow(&self, it: &mut Interp, x: f32, ispan: Span, v: Value) -> Exec<()> {
+        let i = match f32_int(x) {
+            Some(i) => i as i64,
+            None => it.index_of(x, ispan)?,
+        };
+        self.store_at(it, &[i], v)
+    }
+
     /// [`CPlace::num`] of any other place (indices to evaluate, a reference, an error to
     /// report): kept out of line, so that the component reads above stay small where they
     /// are inlined.
@@ -204,7 +354,13 @@ impl CPlace {
         if let Err(u) = self.indices(it, c, &mut buf) {
             return it.fail_nf(u);
         }
-        match self.walk(it, &buf[..self.idx.len()]) {
+        self.num_at(it, &buf[..self.idx.len()], span)
+    }
+
+    /// The `num` at the place with its indices evaluated (NaN: an error is pending).
+    #[inline]
+    fn num_at(&self, it: &mut Interp, idx: &[i64], span: Span) -> f32 {
+        match self.walk(it, idx) {
             Ok(Value::Num(x)) => *x,
             Ok(other) => {
                 let v = other.clone();
@@ -231,6 +387,7 @@ impl CPlace {
         let v = match self.short {
             Short::Field(s, f) => comp(it.stack.get_mut(bp + s as usize)?, f),
             Short::Field2(s, f, g) => comp(comp(it.stack.get_mut(bp + s as usize)?, f)?, g),
+            Short::Elem1 => return None,
             Short::No => return self.fields_num_mut_walk(it),
         };
         match v {
@@ -302,7 +459,11 @@ impl CPlace {
         }
         let mut buf = [0i64; MAX_INDICES];
         self.indices(it, c, &mut buf)?;
-        let idx = &buf[..self.idx.len()];
+        self.store_at(it, &buf[..self.idx.len()], v)
+    }
+
+    /// Write `v` at the place with its indices evaluated.
+    fn store_at(&self, it: &mut Interp, idx: &[i64], v: Value) -> Exec<()> {
         // `a{i} := v` of a 1-D array held by a local or global (an array of records), when
         // the index is in bounds and neither is an array: the element is replaced directly.
         if let ([CStep::Elem(1)], [i]) = (&*self.steps, idx)
