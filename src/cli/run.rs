@@ -225,7 +225,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
     let uses_sockets = socket_clock::uses_sockets(&prog);
-    let view = match start_view(&args, &prog, &sources) {
+    let view = match start_view(&args, [&*prog], &sources) {
         Ok(v) => v,
         Err(msg) => {
             eprintln!("error: {msg}");
@@ -546,15 +546,18 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
 }
 
 /// The view of this run (`--view`, `--view-live`), showing the program's own modules.
-fn start_view(
+/// The view of a run of `progs` (one per task; the page shows their files).
+pub(super) fn start_view<'a>(
     args: &RunArgs,
-    prog: &crate::ir::Program,
+    progs: impl IntoIterator<Item = &'a crate::ir::Program>,
     sources: &Arc<SourceMap>,
 ) -> Result<Option<view_options::ViewRun>, String> {
     let mut files = Vec::new();
-    for m in prog.modules.iter().filter(|m| !m.stdlib) {
-        if !files.contains(&m.source) {
-            files.push(m.source);
+    for prog in progs {
+        for m in prog.modules.iter().filter(|m| !m.stdlib) {
+            if !files.contains(&m.source) {
+                files.push(m.source);
+            }
         }
     }
     let robot = Robot::new(args.robot.0);
