@@ -175,6 +175,11 @@ pub struct Interp {
     /// Value slots of all frames; `sp` is the top (slots above it are kept for reuse).
     stack: Vec<Value>,
     sp: usize,
+    /// Slots of the calls running on the `num` frame slab (`compile::numroutine`): the
+    /// current frame's first slot, and the first free one.
+    nslab: Vec<f32>,
+    nbp: usize,
+    ntop: usize,
     refs: Vec<AbsPlace>,
     frames: Vec<Frame>,
     idx: Vec<i64>,
@@ -275,6 +280,9 @@ impl Interp {
             globals: Vec::new(),
             stack: Vec::with_capacity(1024),
             sp: 0,
+            nslab: Vec::with_capacity(256),
+            nbp: 0,
+            ntop: 0,
             refs: Vec::with_capacity(64),
             frames: Vec::with_capacity(64),
             idx: Vec::with_capacity(16),

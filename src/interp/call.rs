@@ -216,6 +216,11 @@ impl Interp {
         rbp: usize,
         span: Span,
     ) -> Exec<Value> {
+        if let Some(nr) = Self::slab_routine(c, rid)
+            && let Some(x) = self.slab_from_stack(c, nr, bp, rbp, span)
+        {
+            return x;
+        }
         let r = c.prog.routine(rid);
         let values = self.frame_values(c, rid, bp);
         let cr = c.routines.get(rid.0 as usize);
@@ -421,7 +426,7 @@ impl Interp {
         }
     }
 
-    fn fncnoret(&self, r: &Routine) -> Unwind {
+    pub(crate) fn fncnoret(&self, r: &Routine) -> Unwind {
         self.error(
             errnum::ERR_FNCNORET,
             r.span.end_point(),

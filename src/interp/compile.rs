@@ -13,6 +13,7 @@ mod divk;
 mod flow;
 mod natives;
 mod num;
+mod numroutine;
 mod place;
 mod simple;
 mod strfast;
@@ -59,6 +60,9 @@ pub(crate) struct CRoutine {
     /// When every routine data is a `num` without an initial value: their slots and the
     /// value each starts with (written without looking at the declarations).
     pub num_data: Option<Box<[(u32, f32)]>>,
+    /// The routine compiled for the `num` frame slab, when it qualifies (see
+    /// [`numroutine`]); calls of it run there.
+    pub slab: Option<numroutine::NRoutine>,
 }
 
 /// A routine data declaration: the value it starts with, or its compiled initial value
@@ -139,11 +143,19 @@ impl Code {
     /// needs to know about its frame).
     pub(crate) fn new(prog: Arc<Program>, engine: Engine, standard: &[bool]) -> Code {
         let tree_walk = engine == Engine::TreeWalk;
+        let mut slab = match tree_walk {
+            false => numroutine::compile_all(&prog),
+            true => Vec::new(),
+        }
+        .into_iter();
         let routines = prog
             .routines
             .iter()
             .map(|r| match tree_walk {
-                false => routine(&prog, r, standard),
+                false => CRoutine {
+                    slab: slab.next().flatten(),
+                    ..routine(&prog, r, standard)
+                },
                 true => {
                     let locals: Box<[CLocal]> = r
                         .locals
@@ -166,6 +178,7 @@ impl Code {
                         ret_num: None,
                         num_data: num_data(r, &locals),
                         locals,
+                        slab: None,
                     }
                 }
             })
@@ -200,6 +213,7 @@ fn routine(p: &Program, r: &Routine, standard: &[bool]) -> CRoutine {
         ret_num,
         num_data: num_data(r, &locals),
         locals,
+        slab: None,
     }
 }
 
@@ -520,8 +534,8 @@ impl<'p> Cx<'p> {
             }
             StmtKind::Assign { place, value } => val::assign(self, place, value),
             StmtKind::LateCall { name, args, module } => {
-                let (nspan, span) = (name.span, s.span);
-                let (name, module) = (val::value(self, name), *module);
+                let (nspan, span, name_e) = (name.span, s.span, name);
+                let module = *module;
                 let values: Box<[Option<crate::interp::call::LateVal>]> = args
                     .iter()
                     .map(|a| {
@@ -532,6 +546,25 @@ impl<'p> Cx<'p> {
                     })
                     .collect();
                 let args = args.clone();
+                if let crate::ir::ExprKind::Binary(crate::ir::BinOp::Concat, ..) = name_e.kind {
+                    // `%"prefix" + …%`: the name is built in a scratch buffer (no string
+                    // value made for each call).
+                    let parts = val::concat_parts(self, name_e);
+                    return CStmt {
+                        run: Box::new(move |it, c| {
+                            let mut buf = it.strbufs.pop().unwrap_or_default();
+                            buf.clear();
+                            let r = match it.concat_into(c, &parts, 0, &mut buf) {
+                                Ok(()) => it.late_call(c, &buf, &args, Some(&values), module, span),
+                                Err(u) => Err(u),
+                            };
+                            it.strbufs.push(buf);
+                            r
+                        }),
+                        span,
+                    };
+                }
+                let name = val::value(self, name_e);
                 Box::new(move |it, c| match name(it, c)? {
                     crate::interp::Value::Str(n) => {
                         it.late_call(c, &n, &args, Some(&values), module, span)

@@ -80,6 +80,11 @@ impl Interp {
         let r = p.routine(call.rid);
         let bp = self.sp;
         let rbp = self.refs.len();
+        if call.all_num
+            && let Some(nr) = Self::slab_routine(c, call.rid)
+        {
+            return self.slab_call(c, nr, call);
+        }
         if call.all_num {
             for arg in call.args.iter() {
                 if let CArg::Num(o, span) = arg {
@@ -208,6 +213,29 @@ impl Copied {
 }
 
 impl Interp {
+    /// [`Interp::ccall`] of a routine run on the `num` frame slab.
+    #[inline(never)]
+    fn slab_call(
+        &mut self,
+        c: &Code,
+        nr: &super::numroutine::NRoutine,
+        call: &CCall,
+    ) -> Exec<Value> {
+        let mut argv = [0f32; super::numroutine::MAX_ARGS];
+        for (arg, slot) in call.args.iter().zip(argv.iter_mut()) {
+            if let CArg::Num(o, span) = arg {
+                let x = o.get(self, c);
+                if x.is_nan() {
+                    return Err(self.take_pending(*span));
+                }
+                *slot = x;
+            }
+        }
+        let n = call.args.len().min(argv.len());
+        let x = self.slab_enter(c, nr, &argv[..n], call.span)?;
+        Ok(nr.result(x))
+    }
+
     /// Push a copy of `src` (into the slot above the top, reusing what it holds).
     fn push_copy(&mut self, c: &Code, src: &Copied) -> Exec<()> {
         let mut dst = match self.stack.get_mut(self.sp) {

@@ -218,7 +218,7 @@ impl StrPart {
 /// `+` it completes (none for the first).
 pub(crate) type Parts = Box<[(StrPart, Span)]>;
 
-fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
+pub(crate) fn concat_parts(cx: &Cx, e: &Expr) -> Parts {
     concat_spine(e)
         .into_iter()
         .map(|(b, span)| (StrPart::new(cx, b), span))
@@ -310,7 +310,13 @@ impl Interp {
     }
 
     /// Parts `from..` appended to `buf` (which holds the text of the parts before them).
-    fn concat_into(&mut self, c: &Code, parts: &Parts, from: usize, buf: &mut String) -> Exec<()> {
+    pub(crate) fn concat_into(
+        &mut self,
+        c: &Code,
+        parts: &Parts,
+        from: usize,
+        buf: &mut String,
+    ) -> Exec<()> {
         for (k, (part, span)) in parts.iter().enumerate().skip(from) {
             part.append(self, c, buf)?;
             // More than MAX_STRING bytes may still be few enough characters.
