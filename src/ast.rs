@@ -135,7 +135,15 @@ impl PackedData {
                 ) => true,
                 Some(_) => false,
             };
-        let read = literal::read_data_decl(source, text.get(start..end)?, start);
+        // (A packed aggregate value was just read by the parser: its end is known.)
+        let aggregate_end = match &decl.init {
+            Some(Expr {
+                kind: ExprKind::PackedAggregate(_),
+                span,
+            }) => (span.end as usize).checked_sub(start),
+            _ => None,
+        };
+        let read = literal::read_data_decl(source, text.get(start..end)?, start, aggregate_end);
         (simple && read.as_ref() == Some(decl)).then_some(PackedData {
             start: start as u32,
             end: end as u32,
@@ -168,21 +176,23 @@ impl PackedData {
     /// The [`DataDecl`] of this declaration in the file `source` whose text is `text`: the one
     /// the parser built, node for node.
     pub fn unpack(&self, source: SourceId, text: &str) -> DataDecl {
-        literal::read_data_decl(source, self.text(text), self.start as usize).unwrap_or_else(|| {
-            // (Not reached: the text was read back when it was packed. A declaration without
-            // a type would be reported as an unknown type, so it would not go unnoticed.)
-            let span = self.span(source);
-            DataDecl {
-                local: false,
-                task: false,
-                storage: Storage::Var,
-                ty: Spanned::new(EcoString::new(), span),
-                name: Spanned::new(EcoString::new(), span),
-                dims: Vec::new(),
-                init: None,
-                span,
-            }
-        })
+        literal::read_data_decl(source, self.text(text), self.start as usize, None).unwrap_or_else(
+            || {
+                // (Not reached: the text was read back when it was packed. A declaration without
+                // a type would be reported as an unknown type, so it would not go unnoticed.)
+                let span = self.span(source);
+                DataDecl {
+                    local: false,
+                    task: false,
+                    storage: Storage::Var,
+                    ty: Spanned::new(EcoString::new(), span),
+                    name: Spanned::new(EcoString::new(), span),
+                    dims: Vec::new(),
+                    init: None,
+                    span,
+                }
+            },
+        )
     }
 }
 

@@ -390,7 +390,15 @@ fn read_args(
 /// VAR|PERS|CONST type name [:= value];` without array dimensions, the value a name, a plain
 /// literal or a literal aggregate (kept packed, [`ExprKind::PackedAggregate`]). `None` for
 /// anything else (the parser then keeps the tree it built, see [`super::PackedData`]).
-pub(crate) fn read_data_decl(file: SourceId, t: &str, start: usize) -> Option<DataDecl> {
+///
+/// `aggregate_end`, when known, is where a literal aggregate value ends in `t` (the parser has
+/// just read it: it is not read again).
+pub(crate) fn read_data_decl(
+    file: SourceId,
+    t: &str,
+    start: usize,
+    aggregate_end: Option<usize>,
+) -> Option<DataDecl> {
     let span = |a: usize, z: usize| Span::new(file, start + a, start + z);
     let mut pos = 0;
     let head = read_data_head(t, &mut pos)?;
@@ -410,10 +418,16 @@ pub(crate) fn read_data_decl(file: SourceId, t: &str, start: usize) -> Option<Da
             errors: Vec::new(),
         };
         let value = if t.as_bytes().get(pos) == Some(&b'[') {
-            let (e, _) = read.aggregate(t, start, &mut pos, 0)?;
+            let at = pos;
+            match aggregate_end {
+                Some(end) if end > pos && end <= t.len() => pos = end,
+                _ => {
+                    read.aggregate(t, start, &mut pos, 0)?;
+                }
+            }
             Expr {
                 kind: ExprKind::PackedAggregate(super::PackedAggregate::new()),
-                span: e.span,
+                span: span(at, pos),
             }
         } else {
             read.build = true;
