@@ -28,6 +28,7 @@ pub mod sample_feed;
 pub mod service;
 pub mod signal_script;
 pub mod summary;
+pub mod system_outputs;
 pub mod system_state;
 pub mod tasks;
 pub mod tick_sink;

@@ -536,6 +536,21 @@ mod paths {
             )],
         );
         assert_eq!(sps.len(), 500);
+        // \T replaces the speed data: v10 with \T:=1 takes 1 s, not the 20 s of 10 mm/s.
+        let cycles = |from: [f64; 6], cmd: rapidvc::robot::command::MotionCommand, t: f64| {
+            run_all(&mut core_at(from), vec![with_time(cmd, t)]).len()
+        };
+        let line = move_l(1, target(p1, rot), 10.0, 0.0, ToolData::tool0());
+        assert_eq!(cycles(START, line, 1.0), 250);
+        let joint = abs_j(1, [10.0, 0.0, 0.0, 0.0, 30.0, 0.0], 10.0, 0.0);
+        assert_eq!(cycles([0.0; 6], joint, 1.0), 250);
+        // Shorter than the axes allow: as fast as they can (axis 1 at 175°/s, 0.25 s ramp).
+        let far = abs_j(1, [90.0, 0.0, 0.0, 0.0, 0.0, 0.0], 10.0, 0.0);
+        let n = cycles([0.0; 6], far, 0.1);
+        assert!(
+            (n as f64 * 0.004 - (90.0 / 175.0 + 0.25)).abs() < 0.01,
+            "{n}"
+        );
         // All axes of a joint move arrive together: the limiting axis sets the duration.
         let mut core = core_at([0.0; 6]);
         let sps = run_all(

@@ -39,12 +39,7 @@ fn copy_dir(from: &Path, to: &Path) {
 
 /// `rapidvc ARGS…` in `dir`, to its end.
 fn run_in(dir: &Path, args: &[&str]) -> Ended {
-    let mut cmd = rapidvc!();
-    cmd.args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .env("COLUMNS", "1000");
-    let ended = Proc::spawn(cmd).wait(LIMIT);
+    let ended = spawn_in(dir, args).wait(LIMIT);
     assert!(!ended.timed_out, "rapidvc {args:?} did not end");
     ended
 }
@@ -571,4 +566,470 @@ ENDMODULE
         "{trigg} ticks during the TriggL:\n{}",
         first.stdout
     );
+}
+
+/// A free TCP port of 127.0.0.1 (free when asked: the test's program binds it soon after).
+fn free_port() -> u16 {
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    l.local_addr().unwrap().port()
+}
+
+/// A client of the program's server on `port`, connected as soon as it listens (within
+/// 20 s).
+fn connect(port: u16) -> std::net::TcpStream {
+    let deadline = std::time::Instant::now() + Duration::from_secs(20);
+    loop {
+        match std::net::TcpStream::connect(("127.0.0.1", port)) {
+            Ok(s) => return s,
+            Err(e) if std::time::Instant::now() > deadline => panic!("connect: {e}"),
+            Err(_) => std::thread::sleep(Duration::from_millis(20)),
+        }
+    }
+}
+
+/// `rapidvc ARGS…` started in `dir` (ended by the caller).
+fn spawn_in<S: AsRef<std::ffi::OsStr>>(dir: &Path, args: &[S]) -> Proc {
+    let mut cmd = rapidvc!();
+    cmd.args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .env("COLUMNS", "1000");
+    Proc::spawn(cmd)
+}
+
+/// A communication task listening on a free port of 127.0.0.1 for `secs` seconds, then
+/// (nobody came) failing with ERR_SOCK_TIMEOUT.
+fn listener_task(secs: u32) -> String {
+    let port = free_port();
+    format!(
+        "MODULE comm
+  VAR socketdev server;
+  VAR socketdev client;
+  PROC main()
+    SocketCreate server;
+    SocketBind server, \"127.0.0.1\", {port};
+    SocketListen server;
+    TPWrite \"listening\";
+    SocketAccept server, client \\Time:={secs};
+  ENDPROC
+ENDMODULE
+"
+    )
+}
+
+/// A motion task printing its clock every 0.5 s, five times.
+const TICKS: &str = "MODULE main
+  PROC main()
+    VAR clock c;
+    ClkStart c;
+    FOR i FROM 1 TO 5 DO
+      WaitTime 0.5;
+      TPWrite \"tick \" + NumToStr(ClkRead(c), 1);
+    ENDFOR
+  ENDPROC
+ENDMODULE
+";
+
+/// A task waiting in a socket instruction blocks only itself: the motion task goes on.
+#[test]
+fn a_task_waiting_on_a_socket_lets_the_others_run() {
+    let comm = listener_task(4);
+    let ended = run_system(
+        "sockwait",
+        &[
+            ("T_ROB1", MOTION, TICKS),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    // The ticks come while T_COMM waits in SocketAccept (4 s), then its time-out stops
+    // the run.
+    for t in ["0.5", "1.0", "1.5", "2.0", "2.5"] {
+        assert!(
+            ended.stdout.contains(&format!("[T_ROB1] tick {t}")),
+            "{}",
+            ended.stdout
+        );
+    }
+    assert!(
+        ended.stderr.contains("ERR_SOCK_TIMEOUT"),
+        "{}",
+        ended.stderr
+    );
+    assert_eq!(ended.code, Some(1));
+}
+
+/// Ctrl-C during a socket wait of one task stops every task at once (exit 130).
+#[test]
+fn ctrl_c_during_a_socket_wait_of_one_task_stops_the_run_at_once() {
+    let comm = listener_task(30);
+    let (dir, args) = system(
+        "sockint",
+        &[
+            ("T_ROB1", MOTION, TICKS),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    let mut proc = spawn_in(&dir, &args);
+    assert_eq!(
+        proc.next_line(Duration::from_secs(20)).as_deref(),
+        Some("[T_COMM] listening")
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &proc.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    // Well before the 30 s of the SocketAccept.
+    let ended = proc.wait(Duration::from_secs(10));
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!ended.timed_out, "the run did not end after SIGINT");
+    assert_eq!(ended.code, Some(130), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("interrupted by Ctrl-C"),
+        "{}",
+        ended.stderr
+    );
+}
+
+/// A socket server task beside the motion task: `run` goes in real time (the client is a
+/// real process), the server's command reaches the motion task through a shared PERS, and
+/// the run ends by itself when the NORMAL tasks have.
+#[test]
+fn a_socket_server_task_beside_the_motion_task_runs_in_real_time() {
+    let port = free_port();
+    let comm = format!(
+        "MODULE comm
+  PERS num target_x := 0;
+  VAR socketdev server;
+  VAR socketdev client;
+  PROC main()
+    VAR string cmd;
+    VAR num x;
+    SocketCreate server;
+    SocketBind server, \"127.0.0.1\", {port};
+    SocketListen server;
+    TPWrite \"listening\";
+    SocketAccept server, client \\Time:=20;
+    SocketReceive client \\Str:=cmd \\Time:=20;
+    IF StrToVal(cmd, x) THEN
+      target_x := x;
+      SocketSend client \\Str:=\"ok\";
+    ELSE
+      SocketSend client \\Str:=\"error\";
+    ENDIF
+    SocketClose client;
+    SocketClose server;
+  ENDPROC
+ENDMODULE
+"
+    );
+    let motion = "MODULE main
+  PERS num target_x := 0;
+  PROC main()
+    VAR robtarget p := [[1000, 0, 800], [0, 0, 1, 0], [0, 0, 0, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]];
+    VAR clock c;
+    MoveJ p, v1000, fine, tool0;
+    ClkStart c;
+    WaitUntil target_x <> 0 \\MaxTime:=20;
+    p.trans.x := target_x;
+    MoveL p, v500, fine, tool0;
+    TPWrite \"at x \" + NumToStr(CRobT(\\Tool:=tool0).trans.x, 0);
+    TPWrite \"waited for the command: \" + ValToStr(ClkRead(c) >= 0.2);
+  ENDPROC
+ENDMODULE
+";
+    let (dir, args) = system(
+        "socket",
+        &[
+            ("T_ROB1", MOTION, motion),
+            ("T_COMM", "-Type \"NORMAL\"", &comm),
+        ],
+    );
+    let proc = spawn_in(&dir, &args);
+    // The client: a real process's socket, 0.3 s after the server listens (real time: the
+    // motion task's WaitUntil waits for it on the same clock).
+    let client = std::thread::spawn(move || {
+        use std::io::{Read, Write};
+        let mut s = connect(port);
+        std::thread::sleep(Duration::from_millis(300));
+        s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+        s.write_all(b"1250").unwrap();
+        let mut reply = [0u8; 16];
+        let n = s.read(&mut reply).unwrap();
+        String::from_utf8_lossy(&reply[..n]).to_string()
+    });
+    let ended = proc.wait(LIMIT);
+    let reply = client.join().unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!ended.timed_out);
+    assert_eq!(ended.code, Some(0), "{}\n{}", ended.stdout, ended.stderr);
+    assert_eq!(reply, "ok");
+    assert!(
+        ended.stdout.contains("[T_COMM] listening"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stdout.contains("[T_ROB1] at x 1250"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended
+            .stdout
+            .contains("[T_ROB1] waited for the command: TRUE"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stderr.contains("sockets") && ended.stderr.contains("real time"),
+        "{}",
+        ended.stderr
+    );
+}
+
+/// A state server task beside a moving motion task, as a PC interface has one: it reads the
+/// robot's axes with CJointT (its task shares the robot's mechanical unit group) and sends
+/// them every 0.1 s; the client sees them at that rate, changing as the robot moves.
+#[test]
+fn a_state_server_task_streams_the_moving_robots_axes_at_its_rate() {
+    let port = free_port();
+    let server = format!(
+        "MODULE state
+  VAR socketdev server;
+  VAR socketdev client;
+  PROC main()
+    VAR jointtarget j;
+    SocketCreate server;
+    SocketBind server, \"127.0.0.1\", {port};
+    SocketListen server;
+    SocketAccept server, client \\Time:=20;
+    FOR i FROM 1 TO 25 DO
+      j := CJointT();
+      SocketSend client \\Str:=NumToStr(j.robax.rax_1, 2) + \";\";
+      WaitTime 0.1;
+    ENDFOR
+    SocketClose client;
+    SocketClose server;
+  ENDPROC
+ENDMODULE
+"
+    );
+    let motion = "MODULE main
+  PROC main()
+    FOR i FROM 1 TO 3 DO
+      MoveAbsJ [[60, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v100 \\T:=1, fine, tool0;
+      MoveAbsJ [[0, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v100 \\T:=1, fine, tool0;
+    ENDFOR
+  ENDPROC
+ENDMODULE
+";
+    let (dir, args) = system(
+        "stateserver",
+        &[
+            ("T_ROB1", MOTION, motion),
+            (
+                "T_STATE",
+                "-Type \"NORMAL\" -UseMechanicalUnitGroup \"rob1\"",
+                &server,
+            ),
+        ],
+    );
+    let proc = spawn_in(&dir, &args);
+    let client = std::thread::spawn(move || {
+        use std::io::Read;
+        let mut s = connect(port);
+        s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        let mut got = Vec::new();
+        let mut text = String::new();
+        let mut buf = [0u8; 256];
+        while let Ok(n) = s.read(&mut buf) {
+            if n == 0 {
+                break;
+            }
+            text.push_str(&String::from_utf8_lossy(&buf[..n]));
+            while let Some(end) = text.find(';') {
+                let value: f64 = text[..end].parse().unwrap();
+                got.push((std::time::Instant::now(), value));
+                text.drain(..=end);
+            }
+        }
+        got
+    });
+    let ended = proc.wait(LIMIT);
+    let got = client.join().unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(ended.code, Some(0), "{}\n{}", ended.stdout, ended.stderr);
+    assert_eq!(got.len(), 25, "{got:?}");
+    // The rate of the server's WaitTime (0.1 s), not that of hand-overs.
+    let span = got[24].0 - got[0].0;
+    assert!(
+        span < Duration::from_millis(24 * 100 + 600),
+        "25 messages over {span:?}"
+    );
+    // The axes change as the robot moves (J1 between 0 and 60).
+    let distinct: std::collections::BTreeSet<i64> =
+        got.iter().map(|(_, v)| (*v * 10.0) as i64).collect();
+    assert!(distinct.len() > 10, "{got:?}");
+    assert!(
+        got.iter().all(|(_, v)| (-0.01..=60.01).contains(v)),
+        "{got:?}"
+    );
+}
+
+/// In virtual time a task sharing the robot's mechanical unit group reads where the robot is
+/// at its own time (the motion task hands over at every deadline); a task without a group
+/// cannot read it. (The motion task's path instructions work as with one task.)
+#[test]
+fn cjointt_in_a_task_of_the_robots_group_reads_the_robot_at_that_time() {
+    let motion = "MODULE main
+  PROC main()
+    StopMove;
+    ClearPath;
+    StartMove;
+    MoveAbsJ [[60, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v100 \\T:=1, fine, tool0;
+  ENDPROC
+ENDMODULE
+";
+    let watch = "MODULE watch
+  PROC main()
+    WaitTime 0.5;
+    TPWrite \"J1 at 0.5 s: \" + NumToStr(CJointT().robax.rax_1, 3);
+    WaitTime 0.7;
+    TPWrite \"J1 at 1.2 s: \" + NumToStr(CJointT().robax.rax_1, 3);
+  ENDPROC
+ENDMODULE
+";
+    let ended = run_system(
+        "cjointt",
+        &[
+            ("T_ROB1", MOTION, motion),
+            (
+                "T_WATCH",
+                "-Type \"NORMAL\" -UseMechanicalUnitGroup \"rob1\"",
+                watch,
+            ),
+        ],
+    );
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    // Half way through a symmetric profile; then at the target.
+    assert!(
+        ended.stdout.contains("[T_WATCH] J1 at 0.5 s: 30.000"),
+        "{}",
+        ended.stdout
+    );
+    assert!(
+        ended.stdout.contains("[T_WATCH] J1 at 1.2 s: 60.000"),
+        "{}",
+        ended.stdout
+    );
+    let ended = run_system(
+        "cjointt_nogroup",
+        &[
+            ("T_ROB1", MOTION, motion),
+            ("T_WATCH", "-Type \"NORMAL\"", watch),
+        ],
+    );
+    assert_eq!(ended.code, Some(1), "{}", ended.stdout);
+    assert!(
+        ended
+            .stderr
+            .contains("task T_WATCH is not a motion task and has no mechanical unit group"),
+        "{}",
+        ended.stderr
+    );
+}
+
+/// EIO.cfg's system outputs follow the controller: motors on, the cycle and each task
+/// running, the robot standing still or moving; a status rapidvc does not drive is a
+/// warning naming it, one on a signal that is no DO an error.
+#[test]
+fn system_outputs_follow_the_tasks_and_the_robot() {
+    const EIO: &str = "EIO:CFG_1.0:6:1::
+#
+EIO_SIGNAL:
+      -Name \"doMotOn\" -SignalType \"DO\"
+      -Name \"doCycle\" -SignalType \"DO\"
+      -Name \"doRob\" -SignalType \"DO\"
+      -Name \"doLog\" -SignalType \"DO\"
+      -Name \"doStill\" -SignalType \"DO\"
+      -Name \"doEStop\" -SignalType \"DO\" -Default 1
+      -Name \"doRunch\" -SignalType \"DO\"
+#
+SYSSIG_OUT:
+      -Status \"MotOnState\" -Signal \"doMotOn\"
+      -Status \"CycleOn\" -Signal \"doCycle\"
+      -Status \"TaskExecuting\" -Signal \"doRob\" -Arg2 \"T_ROB1\"
+      -Status \"TaskExecuting\" -Signal \"doLog\" -Arg2 \"T_LOG\"
+      -Status \"MechUnitNotMoving\" -Signal \"doStill\" -Arg1 \"ROB_1\"
+      -Status \"EmStop\" -Signal \"doEStop\"
+      -Status \"RunchOk\" -Signal \"doRunch\"
+";
+    let motion = "MODULE main
+  FUNC string outs()
+    RETURN NumToStr(DOutput(doMotOn), 0) + NumToStr(DOutput(doCycle), 0)
+      + NumToStr(DOutput(doRob), 0) + NumToStr(DOutput(doLog), 0)
+      + NumToStr(DOutput(doEStop), 0) + NumToStr(DOutput(doRunch), 0);
+  ENDFUNC
+  PROC main()
+    TPWrite \"outputs \" + outs();
+    TPWrite \"standing: \" + NumToStr(DOutput(doStill), 0);
+    MoveAbsJ [[60, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v1000, z50, tool0;
+    WaitTime 0.2;
+    TPWrite \"moving: \" + NumToStr(DOutput(doStill), 0) + \", T_LOG ended: \" + NumToStr(DOutput(doLog), 0);
+    MoveAbsJ [[0, 0, 0, 0, 30, 0], [9E9, 9E9, 9E9, 9E9, 9E9, 9E9]], v1000, fine, tool0;
+    WaitTime 0.1;
+    TPWrite \"standing again: \" + NumToStr(DOutput(doStill), 0);
+  ENDPROC
+ENDMODULE
+";
+    let log = "MODULE log
+  PROC main()
+    WaitTime 0.1;
+  ENDPROC
+ENDMODULE
+";
+    let (dir, args) = system(
+        "sysout",
+        &[
+            ("T_ROB1", MOTION, motion),
+            ("T_LOG", "-Type \"NORMAL\"", log),
+        ],
+    );
+    std::fs::write(dir.join("EIO.cfg"), EIO).unwrap();
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let ended = run_in(&dir, &args);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    for line in [
+        "[T_ROB1] outputs 111101",
+        "[T_ROB1] standing: 1",
+        "[T_ROB1] moving: 0, T_LOG ended: 0",
+        "[T_ROB1] standing again: 1",
+    ] {
+        assert!(ended.stdout.contains(line), "{line}:\n{}", ended.stdout);
+    }
+    // Not driven: a warning naming it; on no DO: an error before the run.
+    let eio = EIO.replace("\"RunchOk\"", "\"SimMode\"");
+    std::fs::write(dir.join("EIO.cfg"), eio).unwrap();
+    let ended = run_in(&dir, &args);
+    assert!(
+        ended
+            .stderr
+            .contains("the system output `SimMode` is not simulated by rapidvc"),
+        "{}",
+        ended.stderr
+    );
+    let eio = EIO.replace("-Signal \"doRunch\"", "-Signal \"doNothing\"");
+    std::fs::write(dir.join("EIO.cfg"), eio).unwrap();
+    let ended = run_in(&dir, &args);
+    assert_eq!(ended.code, Some(2), "{}", ended.stdout);
+    assert!(
+        ended
+            .stderr
+            .contains("drives `doNothing`, which is not a digital output"),
+        "{}",
+        ended.stderr
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

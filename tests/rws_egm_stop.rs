@@ -11,6 +11,7 @@
 use prost::Message;
 use rapidvc::egm::proto::EgmRobot;
 use rapidvc::egm::proto::egm_mci_state::MciStateType;
+use rapidvc::egm::proto::egm_motor_state::MotorStateType;
 use rapidvc::egm::proto::egm_rapid_ctrl_exec_state::RapidCtrlExecStateType;
 use rapidvc_testkit::egm_wire::joint_reply;
 use rapidvc_testkit::procs::wait_until;
@@ -33,6 +34,7 @@ struct Seen {
     /// The controller's time of the feedback (s).
     time: f64,
     rapid_running: bool,
+    motors_on: bool,
     mci: Option<i32>,
     joints: [f64; 6],
 }
@@ -82,6 +84,8 @@ impl Sensor {
                     time,
                     rapid_running: m.rapid_exec_state.map(|s| s.state)
                         == Some(RapidCtrlExecStateType::RapidRunning as i32),
+                    motors_on: m.motor_state.map(|s| s.state)
+                        == Some(MotorStateType::MotorsOn as i32),
                     mci: m.mci_state.map(|s| s.state),
                     joints,
                 });
@@ -305,6 +309,63 @@ fn a_stop_during_an_egm_run_pauses_it_and_a_start_resumes_it_to_convergence() {
         "running again after the start"
     );
     assert!(peak_speed(&after) < 10.5, "{}", peak_speed(&after));
+    no_errors(&mut c);
+}
+
+/// The motors switched off and on over RWS while an EGM run is stopped.
+fn set_motors(c: &mut Client, on: bool) {
+    post(
+        c,
+        "/rw/panel/ctrlstate?action=setctrlstate",
+        if on {
+            "ctrl-state=motoron"
+        } else {
+            "ctrl-state=motoroff"
+        },
+    );
+}
+
+#[test]
+fn the_sensor_hears_the_motors_switched_off_and_on_while_the_run_is_stopped() {
+    let (sensor, _srv, mut c) = run_with_sensor("egmmotors", 3.0);
+    stop(&mut c);
+    std::thread::sleep(Duration::from_millis(700));
+    set_motors(&mut c, false);
+    let off_at = Instant::now();
+    std::thread::sleep(Duration::from_millis(600));
+    set_motors(&mut c, true);
+    let on_at = Instant::now();
+    std::thread::sleep(Duration::from_millis(400));
+    start(&mut c, "asis");
+    let started_at = Instant::now();
+    wait_run_end(&mut c, Duration::from_secs(20));
+    let got = joint(&mut c, 3);
+    assert!((got - TARGET[2]).abs() < 0.3, "J3 {got}");
+    let seen = sensor.seen();
+    let between = |from: Instant, to: Instant| -> Vec<Seen> {
+        seen.iter()
+            .filter(|s| s.at > from && s.at < to)
+            .copied()
+            .collect()
+    };
+    // Motors off: every message says so (a 20 ms poll and a cycle after the request), with
+    // RAPID stopped; before it and after switching them on, MOTORS_ON.
+    let off = between(off_at + Duration::from_millis(100), on_at);
+    assert!(off.len() > 100, "messages while off: {}", off.len());
+    assert!(
+        off.iter().all(|s| !s.motors_on && !s.rapid_running),
+        "MOTORS_OFF and RAPID_STOPPED while the motors are off"
+    );
+    let before = between(off_at - Duration::from_millis(600), off_at);
+    assert!(!before.is_empty() && before.iter().all(|s| s.motors_on && !s.rapid_running));
+    let on = between(on_at + Duration::from_millis(100), started_at);
+    assert!(!on.is_empty() && on.iter().all(|s| s.motors_on && !s.rapid_running));
+    let running = between(started_at + Duration::from_millis(100), Instant::now());
+    assert!(
+        running.iter().any(|s| s.motors_on && s.rapid_running),
+        "MOTORS_ON and RAPID_RUNNING after the start"
+    );
+    assert!(peak_speed(&seen) < 10.5, "{}", peak_speed(&seen));
     no_errors(&mut c);
 }
 

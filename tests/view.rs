@@ -59,6 +59,14 @@ fn run_with_view(program: &str, name: &str) -> (String, Value, PathBuf, String) 
 
 /// Every motion cycle of the trace, drawn from the kept rows, is within the tolerance.
 fn check_rows_against_trace(data: &Value, trace: &Path) -> usize {
+    let (kept, cycles) = rows_within_tolerance(data, trace);
+    assert!(kept * 10 < cycles, "{kept} rows kept of {cycles} cycles");
+    cycles
+}
+
+/// Every motion cycle of the trace, drawn from the kept rows, is within the tolerance:
+/// (rows kept, cycles traced).
+fn rows_within_tolerance(data: &Value, trace: &Path) -> (usize, usize) {
     let rows = Rows::of(data);
     let traced = read_trace(trace);
     assert_eq!(rows.t.first(), traced.first().map(|r| &r.t));
@@ -82,13 +90,7 @@ fn check_rows_against_trace(data: &Value, trace: &Path) -> usize {
             );
         }
     }
-    assert!(
-        rows.t.len() * 10 < traced.len(),
-        "{} rows kept of {} cycles",
-        rows.t.len(),
-        traced.len()
-    );
-    traced.len()
+    (rows.t.len(), traced.len())
 }
 
 #[test]
@@ -261,4 +263,46 @@ fn bad_view_options_fail_before_the_run() {
     ]);
     assert_eq!(code, 2);
     assert!(stderr.contains("--lockstep keeps virtual time"), "{stderr}");
+}
+
+#[test]
+fn a_system_of_several_tasks_is_viewed_with_every_tasks_output() {
+    // A copy: the cell's logger task writes into its HOME folder.
+    let dir = scratch("cell");
+    let cell = dir.join("cell");
+    let _ = std::fs::remove_dir_all(&cell);
+    let status = std::process::Command::new("cp")
+        .args(["-r", "tests/tasks/cell"])
+        .arg(&cell)
+        .current_dir(root())
+        .status()
+        .expect("cp");
+    assert!(status.success());
+    let (_, data, trace, stdout) = run_with_view(cell.to_str().unwrap(), "cellview");
+    assert_eq!(data["finished"], true);
+    // The page shows the files of every task, draws the motion task's moves within the
+    // tolerance and logs every task's TP lines (with their task's name) as printed.
+    let files: Vec<String> = data["scene"]["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["name"].as_str().unwrap().to_string())
+        .collect();
+    for module in ["main.mod", "logger.mod", "cell.mod"] {
+        assert!(
+            files.iter().any(|f| f.ends_with(module)),
+            "{module} in {files:?}"
+        );
+    }
+    // (A short program of many small moves: a row for every few cycles.)
+    let (kept, cycles) = rows_within_tolerance(&data, &trace);
+    assert!(
+        cycles > 1000 && kept < cycles / 2,
+        "{kept} rows of {cycles} cycles"
+    );
+    let tp = view_page::tp_lines(&data["log"]);
+    assert_eq!(tp, stdout.lines().collect::<Vec<_>>());
+    assert!(tp.iter().any(|l| l.starts_with("[T_LOG] ")), "{tp:?}");
+    assert!(tp.iter().any(|l| l.starts_with("[T_CELL] ")), "{tp:?}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -122,13 +122,7 @@ fn a_live_run_streams_the_robot_to_a_websocket_client() {
         .filter(|m| m["type"] == "log" && m["entry"][1] == "tp")
         .map(|m| m["entry"][2].as_str().unwrap())
         .collect();
-    let in_snapshot: Vec<&str> = snapshot["log"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|e| e[1] == "tp")
-        .map(|e| e[2].as_str().unwrap())
-        .collect();
+    let in_snapshot = rapidvc_testkit::view_page::tp_lines(&snapshot["log"]);
     let mut all: Vec<&str> = in_snapshot.clone();
     all.extend(tp.iter().filter(|l| !in_snapshot.contains(l)));
     assert_eq!(all, ["to b 1", "to a 1", "to b 2", "to a 2"]);

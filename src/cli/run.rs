@@ -225,7 +225,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let sources: Arc<SourceMap> = Arc::new(loaded.sources);
     let uses_egm = egm_options::uses_egm(&prog, &sources);
     let uses_sockets = socket_clock::uses_sockets(&prog);
-    let view = match start_view(&args, &prog, &sources) {
+    let view = match start_view(&args, [&*prog], &sources) {
         Ok(v) => v,
         Err(msg) => {
             eprintln!("error: {msg}");
@@ -249,6 +249,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let tee = view.as_ref().map(view_options::ViewRun::session);
+    let outputs = system_outputs(&loaded.config, &signals);
     let loader = crate::program::runtime_loader::RuntimeLoader::new(&prog, &sources, &signals);
     let host = ControllerHost::new(ctl)
         .with_egm(egm_controller)
@@ -273,6 +274,12 @@ pub fn run(args: RunArgs) -> ExitCode {
     it.set_operator(operator);
     // The main thread has 8 MiB of stack; leave 2 MiB of headroom.
     it.set_stack_budget(6 << 20);
+    if let Some(o) = &outputs {
+        o.show(&run_output_state(
+            vec![crate::config::sys::DEFAULT_TASK.to_string()],
+            false,
+        ));
+    }
     let (mut code, drain) = match it.init() {
         Err(e) => {
             render::runtime_error(&e, &sources);
@@ -299,6 +306,9 @@ pub fn run(args: RunArgs) -> ExitCode {
         progress_line::clear();
         eprintln!("error: {e}");
         code = ExitCode::from(1);
+    }
+    if let Some(o) = &outputs {
+        o.show(&run_output_state(Vec::new(), code != ExitCode::SUCCESS));
     }
     if code == ExitCode::SUCCESS
         && let Some(w) = answers::unused_warning(it.operator())
@@ -546,15 +556,18 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
 }
 
 /// The view of this run (`--view`, `--view-live`), showing the program's own modules.
-fn start_view(
+/// The view of a run of `progs` (one per task; the page shows their files).
+pub(super) fn start_view<'a>(
     args: &RunArgs,
-    prog: &crate::ir::Program,
+    progs: impl IntoIterator<Item = &'a crate::ir::Program>,
     sources: &Arc<SourceMap>,
 ) -> Result<Option<view_options::ViewRun>, String> {
     let mut files = Vec::new();
-    for m in prog.modules.iter().filter(|m| !m.stdlib) {
-        if !files.contains(&m.source) {
-            files.push(m.source);
+    for prog in progs {
+        for m in prog.modules.iter().filter(|m| !m.stdlib) {
+            if !files.contains(&m.source) {
+                files.push(m.source);
+            }
         }
     }
     let robot = Robot::new(args.robot.0);
@@ -613,6 +626,9 @@ pub(super) fn start_controller(
     }
     if let Some(v) = view {
         sinks.push(v.sink(uses_egm.then(|| feed.subscribe())));
+    }
+    if let Some(sink) = system_outputs(cfg, signals).and_then(|o| o.motion_sink()) {
+        sinks.push(sink);
     }
     if std::io::stderr().is_terminal() {
         sinks.push(Box::new(progress_line::ProgressLine::new(Arc::clone(
@@ -690,6 +706,29 @@ pub(super) fn start_controller(
     ControllerHandle::start_with_hook(config, sinks, hook)
         .map(|c| (c, egm_controller, log_written, false))
         .map_err(|e| start_error(&e))
+}
+
+/// The system outputs of the configuration's EIO.cfg on `signals`, if it has any.
+pub(crate) fn system_outputs(
+    cfg: &crate::config::Config,
+    signals: &Arc<crate::signals::SignalTable>,
+) -> Option<crate::controller::system_outputs::SystemOutputs> {
+    let eio = cfg.eio.as_ref()?;
+    crate::controller::system_outputs::SystemOutputs::new(&eio.system_outputs, signals)
+}
+
+/// What the system outputs show while a `rapidvc run` goes on (`running`: its tasks) or
+/// after it ended (`error`: on an error).
+pub(crate) fn run_output_state(
+    running: Vec<String>,
+    error: bool,
+) -> crate::controller::system_outputs::OutputState {
+    crate::controller::system_outputs::OutputState {
+        motors_on: true,
+        auto: true,
+        running,
+        error,
+    }
 }
 
 fn start_error(e: &ControllerError) -> String {

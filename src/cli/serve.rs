@@ -137,6 +137,9 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
         Arc::clone(&shutdown),
         calendar,
     ));
+    if let Some(o) = run::system_outputs(&loaded.config, &loaded.signals) {
+        state.attach_outputs(Arc::new(o));
+    }
     let (services, forwarded) = match start_services(endpoint, &state, info) {
         Ok(s) => s,
         Err(code) => return code,

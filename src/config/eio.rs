@@ -13,9 +13,14 @@
 //! Accepted and ignored without a warning (they change nothing in a virtual controller):
 //! `-Access`, `-Category`, `-Label`, `-Invert`, `-FiltPas`, `-FiltAct`, `-SysfailReset`,
 //! `-Store`, `-SafeLevel`, `-EncType`, `-MinBitVal`, `-MaxBitVal`, `-MinPhysLimit`,
-//! `-MaxPhysLimit`. Any other attribute is a warning. Other sections (`EIO_BUS`,
-//! `EIO_UNIT`, `SYSSIG_OUT`, …) are skipped; `EIO_CROSS` (cross connections, which would
-//! change signal behaviour) gets an "is not supported" warning.
+//! `-MaxPhysLimit`. Any other attribute is a warning.
+//!
+//! `SYSSIG_OUT` instances (`-Status "MotOnState" -Signal "doMotorOn"`, `-Arg1` a mechanical
+//! unit, `-Arg2` a task) are the controller's system outputs: the statuses the controller
+//! drives are listed in [`SYSTEM_OUTPUTS`] (`controller::system_outputs` sets them); another
+//! status is a warning, a signal that is no DO of the file an error. Other sections
+//! (`EIO_BUS`, `EIO_UNIT`, `SYSSIG_IN`, …) are skipped; `EIO_CROSS` (cross connections, which
+//! would change signal behaviour) gets an "is not supported" warning.
 
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
@@ -67,6 +72,39 @@ const IGNORED: &[&str] = &[
 /// Sections that would change signal behaviour but are not implemented.
 const UNSUPPORTED_SECTIONS: &[&str] = &["EIO_CROSS"];
 
+/// The `SYSSIG_OUT` statuses rapidvc drives (`controller::system_outputs`).
+pub const SYSTEM_OUTPUTS: &[&str] = &[
+    "MotOnState",
+    "MotorOnState",
+    "MotorOn",
+    "MotOffState",
+    "MotorOffState",
+    "MotorOff",
+    "AutoOn",
+    "CycleOn",
+    "RunchOk",
+    "MotSupOn",
+    "EmStop",
+    "SmbBatteryChargeLow",
+    "TaskExecuting",
+    "Error",
+    "ProdExecError",
+    "MechUnitNotMoving",
+];
+
+/// One `SYSSIG_OUT` instance: a digital output the controller drives.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemOutput {
+    /// The status, as one of [`SYSTEM_OUTPUTS`] is written.
+    pub status: &'static str,
+    /// The signal's name.
+    pub signal: String,
+    /// `-Arg1` (a mechanical unit for `MechUnitNotMoving`).
+    pub arg1: Option<String>,
+    /// `-Arg2` (a task for `TaskExecuting`, `Error`).
+    pub arg2: Option<String>,
+}
+
 /// One signal read from EIO.cfg.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EioSignal {
@@ -81,6 +119,8 @@ pub struct EioSignal {
 pub struct EioConfig {
     /// The signals.
     pub signals: Vec<EioSignal>,
+    /// The system outputs the controller drives.
+    pub system_outputs: Vec<SystemOutput>,
 }
 
 impl EioConfig {
@@ -142,6 +182,63 @@ pub fn read(file: &CfgFile, diags: &mut Diagnostics) -> EioConfig {
                     out.signals.push(sig);
                 }
             }
+        }
+    }
+    out.system_outputs = system_outputs(src, file, &out.signals, diags);
+    out
+}
+
+/// The `SYSSIG_OUT` instances whose status rapidvc drives, on digital outputs of `signals`.
+fn system_outputs(
+    src: SourceId,
+    file: &CfgFile,
+    signals: &[EioSignal],
+    diags: &mut Diagnostics,
+) -> Vec<SystemOutput> {
+    let dos: HashMap<String, ()> = signals
+        .iter()
+        .filter(|s| s.def.kind == SignalKind::Do)
+        .map(|s| (s.def.name.to_ascii_lowercase(), ()))
+        .collect();
+    let text = |inst: &CfgInstance, name: &str| {
+        inst.get(name)
+            .and_then(|a| a.as_text().map(|t| (t.to_string(), a.value_or_name_span())))
+    };
+    let mut out = Vec::new();
+    for section in file.sections_named("SYSSIG_OUT") {
+        for inst in &section.instances {
+            let (Some((status, status_span)), Some((signal, signal_span))) =
+                (text(inst, "Status"), text(inst, "Signal"))
+            else {
+                continue;
+            };
+            let Some(known) = SYSTEM_OUTPUTS
+                .iter()
+                .find(|s| s.eq_ignore_ascii_case(&status))
+            else {
+                diags.push(ConfigError::UnsupportedSystemOutput {
+                    src,
+                    span: status_span,
+                    status,
+                    signal,
+                });
+                continue;
+            };
+            if !dos.contains_key(&signal.to_ascii_lowercase()) {
+                diags.push(ConfigError::SystemOutputSignal {
+                    src,
+                    span: signal_span,
+                    status,
+                    signal,
+                });
+                continue;
+            }
+            out.push(SystemOutput {
+                status: known,
+                signal,
+                arg1: text(inst, "Arg1").map(|t| t.0),
+                arg2: text(inst, "Arg2").map(|t| t.0),
+            });
         }
     }
     out

@@ -361,6 +361,46 @@ pub enum ConfigError {
         name: String,
     },
 
+    /// A `SYSSIG_OUT` status rapidvc does not drive.
+    #[error(
+        "the system output `{status}` is not simulated by rapidvc: `{signal}` keeps what the program writes"
+    )]
+    #[diagnostic(
+        code(rapidvc::config::unsupported_system_output),
+        severity(Warning),
+        help(
+            "simulated: MotOnState, MotorOnState, MotorOn, MotOffState, MotorOffState, MotorOff, AutoOn, CycleOn, RunchOk, MotSupOn, EmStop, SmbBatteryChargeLow, TaskExecuting, Error, ProdExecError, MechUnitNotMoving"
+        )
+    )]
+    UnsupportedSystemOutput {
+        /// The file.
+        src: SourceId,
+        /// The `-Status` value.
+        #[label("not simulated")]
+        span: Span,
+        /// The status.
+        status: String,
+        /// The signal.
+        signal: String,
+    },
+
+    /// A system output whose signal is not a digital output of the file.
+    #[error(
+        "the system output `{status}` drives `{signal}`, which is not a digital output (DO) of this EIO.cfg"
+    )]
+    #[diagnostic(code(rapidvc::config::system_output_signal))]
+    SystemOutputSignal {
+        /// The file.
+        src: SourceId,
+        /// The `-Signal` value.
+        #[label("no DO of this name")]
+        span: Span,
+        /// The status.
+        status: String,
+        /// The signal.
+        signal: String,
+    },
+
     /// A section rapidvc reads but whose behaviour it does not implement.
     #[error("{section} is not supported by rapidvc; its instances are ignored")]
     #[diagnostic(code(rapidvc::config::unsupported_section), severity(Warning))]
@@ -394,6 +434,8 @@ impl RapidDiagnostic for ConfigError {
             | ConfigError::DuplicateSignal { src, .. }
             | ConfigError::EmptyRange { src, .. }
             | ConfigError::UnsupportedSection { src, .. }
+            | ConfigError::UnsupportedSystemOutput { src, .. }
+            | ConfigError::SystemOutputSignal { src, .. }
             | ConfigError::DuplicateDevice { src, .. }
             | ConfigError::TooManyDevices { src, .. }
             | ConfigError::UnsupportedDevice { src, .. }

@@ -609,6 +609,7 @@ impl EgmController {
     /// session goes on telling the sensor RAPID_STOPPED) until [`EgmController::resume_run`].
     /// Returns true when a run was paused.
     pub fn pause_run(&mut self) -> bool {
+        self.shared.rapid_stopped.store(true, Ordering::Relaxed);
         self.poll_reports();
         match self.run.as_ref().filter(|r| r.result.is_none()) {
             Some(run) => {
@@ -621,9 +622,21 @@ impl EgmController {
 
     /// The program started again: a paused run goes on.
     pub fn resume_run(&mut self) {
+        self.shared.rapid_stopped.store(false, Ordering::Relaxed);
         if let Some(run) = &self.run {
             run.control.set_paused(false);
         }
+    }
+
+    /// What the controller's panel and program state are (`rapidvc serve`): every
+    /// `EgmRobot` from the next cycle on reports MOTORS_ON or MOTORS_OFF, and a position
+    /// stream RAPID_RUNNING or RAPID_STOPPED (a run's own state follows
+    /// [`EgmController::pause_run`] and [`EgmController::resume_run`]).
+    pub fn set_controller_state(&mut self, program_running: bool, motors_on: bool) {
+        self.shared
+            .rapid_stopped
+            .store(!program_running, Ordering::Relaxed);
+        self.shared.motors_off.store(!motors_on, Ordering::Relaxed);
     }
 
     /// The controller's speed ratio (1–100 %): scales the EGM speed of the run going on and

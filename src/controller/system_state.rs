@@ -85,6 +85,8 @@ pub struct SystemState {
     task_queues: TaskQueuesSlot,
     /// The motion thread's position cell, once the program side has handed it over.
     position: std::sync::OnceLock<Arc<crate::controller::position_cell::PositionCell>>,
+    /// The system outputs of EIO.cfg (`SYSSIG_OUT`), once attached.
+    outputs: std::sync::OnceLock<Arc<crate::controller::system_outputs::SystemOutputs>>,
 }
 
 /// Where [`TaskQueues`] is kept (a closure, shown by whether it is set).
@@ -139,6 +141,7 @@ impl SystemState {
             clock: MonotonicClock::new(),
             task_queues: TaskQueuesSlot(Mutex::new(None)),
             position: std::sync::OnceLock::new(),
+            outputs: std::sync::OnceLock::new(),
         }
     }
 
@@ -371,6 +374,40 @@ impl SystemState {
     /// given stays).
     pub fn attach_position(&self, cell: Arc<crate::controller::position_cell::PositionCell>) {
         let _ = self.position.set(cell);
+    }
+
+    /// Drive the system outputs of EIO.cfg from this state from now on (the first given
+    /// stays).
+    pub fn attach_outputs(&self, outputs: Arc<crate::controller::system_outputs::SystemOutputs>) {
+        let _ = self.outputs.set(outputs);
+    }
+
+    /// Set the system outputs to the panel's and the tasks' state (called by the program
+    /// sides at their panel poll): motors, operating mode, and the tasks that run — the
+    /// STATIC and SEMISTATIC ones always, the active NORMAL ones while the program runs.
+    /// (`Error` stays 0 here: the event log has the error.)
+    pub fn show_outputs(&self) {
+        let Some(outputs) = self.outputs.get() else {
+            return;
+        };
+        let g = self.lock();
+        let mut running: Vec<String> = g
+            .tasks
+            .iter()
+            .filter(|t| t.active && (t.task_type != TaskType::Normal || g.want_run))
+            .map(|t| t.name.clone())
+            .collect();
+        if g.tasks.is_empty() && g.want_run {
+            running.push(crate::config::sys::DEFAULT_TASK.to_string());
+        }
+        let st = crate::controller::system_outputs::OutputState {
+            motors_on: g.ctrl == CtrlState::MotorsOn,
+            auto: g.opmode == OpMode::Auto,
+            running,
+            error: false,
+        };
+        drop(g);
+        outputs.show(&st);
     }
 
     /// The program side tells where the robot is.

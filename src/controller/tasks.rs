@@ -53,7 +53,8 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use crate::config::sys::{RmqType, TaskConfig, TaskType};
 use crate::interp::errnum;
 use crate::interp::host::{
-    EgmHost, EgmPathHost, MotionModes, MotionSetting, MotionWait, Output, RmqMessage, TaskHost,
+    CorrAnswer, CorrRequest, EgmHost, EgmPathHost, MotionModes, MotionSetting, MotionWait, Output,
+    PathCommand, RmqMessage, TaskHost,
 };
 use crate::interp::{Host, HostError};
 use crate::robot::command::{MotionCommand, RobTarget};
@@ -123,6 +124,11 @@ struct State {
     real: Option<Arc<dyn Clock>>,
     /// Message queues outside the tasks (`rw/dipc` queues of a controller that stays up).
     external: Option<Arc<dyn ExternalQueues>>,
+    /// The robot's axes as the motion task last handed the baton over (what the tasks
+    /// sharing its mechanical unit group read in virtual time).
+    robot: Option<JointsDeg>,
+    /// Real time: the motion thread's latest cycle, read instead of `robot`.
+    position: Option<Arc<super::position_cell::PositionCell>>,
 }
 
 /// Slot numbers of queues outside the tasks start here (task slots are task numbers).
@@ -196,6 +202,8 @@ impl Scheduler {
                 idle,
                 real: None,
                 external: None,
+                robot: None,
+                position: None,
             }),
             turn: Condvar::new(),
             halt,
@@ -282,6 +290,37 @@ impl Scheduler {
     /// deadline sleeps until it instead of the time jumping.
     pub fn use_real_time(&self, clock: Arc<dyn Clock>) {
         self.lock().real = Some(clock);
+    }
+
+    /// The motion task's robot and where it starts: the tasks that share its mechanical unit
+    /// group read its position (in real time from the motion thread's `cell`).
+    pub fn use_robot(
+        &self,
+        start: JointsDeg,
+        cell: Option<Arc<super::position_cell::PositionCell>>,
+    ) {
+        let mut st = self.lock();
+        st.robot = Some(start);
+        st.position = cell;
+    }
+
+    /// The motion task has ended: its robot rests at `joints` from now on.
+    pub fn robot_rests_at(&self, joints: JointsDeg) {
+        let mut st = self.lock();
+        st.robot = Some(joints);
+        st.position = None;
+    }
+
+    /// Where the robot is, for a task that shares the motion task's mechanical unit group:
+    /// the motion thread's latest cycle in real time, else the motion task's last hand-over
+    /// (virtual time passes only while the motion task has the baton). `None` before the
+    /// motion task first handed over.
+    fn robot_joints(&self) -> Option<JointsDeg> {
+        let st = self.lock();
+        match &st.position {
+            Some(cell) => Some(cell.load().joints),
+            None => st.robot,
+        }
     }
 
     /// Queues outside the tasks that the tasks may send to (see [`ExternalQueues`]).
@@ -678,6 +717,8 @@ pub struct TaskedHost {
     task: TaskHandle,
     motion: bool,
     name: String,
+    /// The task's mechanical unit group (`-UseMechanicalUnitGroup`; empty: none).
+    mech_group: String,
     /// Prefix output with the task's name (when there are several tasks).
     label: bool,
     max_time: Option<f64>,
@@ -708,6 +749,10 @@ impl TaskedHost {
         TaskedHost {
             inner,
             motion: spec.as_ref().is_some_and(|s| s.config.motion),
+            mech_group: spec
+                .as_ref()
+                .map(|s| s.config.mech_group.clone())
+                .unwrap_or_default(),
             name: spec.map(|s| s.config.name).unwrap_or_default(),
             task,
             label,
@@ -784,10 +829,19 @@ impl TaskedHost {
     fn switch(&mut self, run: Run) -> Option<RobotTime> {
         let sched = Arc::clone(&self.task.sched);
         let me = self.task.me;
+        // What the other tasks of the robot's group read until the next hand-over.
+        let robot = if self.motion {
+            self.inner.motion_joints().ok()
+        } else {
+            None
+        };
         let mut st = sched.lock();
         if self.motion {
             let t = self.inner.now();
             st.now = st.now.max(t);
+            if robot.is_some() {
+                st.robot = robot;
+            }
         }
         if let Some(s) = st.slots.get_mut(me) {
             s.run = run;
@@ -935,10 +989,23 @@ impl Host for TaskedHost {
     }
 
     fn motion_joints(&mut self) -> Result<JointsDeg, HostError> {
-        if !self.motion {
-            return Err(self.not_motion("reading the robot's position"));
+        if self.motion {
+            return self.inner.motion_joints();
         }
-        self.inner.motion_joints()
+        // A task connected to the robot's mechanical unit group (-UseMechanicalUnitGroup)
+        // reads where the motion task's robot is, as a state server task does.
+        if self.mech_group.is_empty() {
+            return Err(HostError::fatal(format!(
+                "reading the robot's position: task {} is not a motion task and has no mechanical unit group (-UseMechanicalUnitGroup in SYS.cfg)",
+                self.name
+            )));
+        }
+        self.task.sched.robot_joints().ok_or_else(|| {
+            HostError::fatal(format!(
+                "reading the robot's position: no motion task moves the robot of task {}'s mechanical unit group {}",
+                self.name, self.mech_group
+            ))
+        })
     }
 
     fn motion_modes(&self) -> MotionModes {
@@ -950,6 +1017,20 @@ impl Host for TaskedHost {
             return Err(self.not_motion("a motion setting"));
         }
         self.inner.motion_set(setting)
+    }
+
+    fn motion_path(&mut self, cmd: PathCommand) -> Result<(), HostError> {
+        if !self.motion {
+            return Err(self.not_motion("a path instruction (StopMove, StartMove, StorePath, …)"));
+        }
+        self.inner.motion_path(cmd)
+    }
+
+    fn motion_corr(&mut self, req: CorrRequest) -> Result<CorrAnswer, HostError> {
+        if !self.motion {
+            return Err(self.not_motion("a path correction instruction"));
+        }
+        self.inner.motion_corr(req)
     }
 
     fn robot_target_of(
@@ -990,6 +1071,14 @@ impl Host for TaskedHost {
 
     fn system(&mut self) -> Option<&mut crate::system::Services> {
         self.inner.system()
+    }
+
+    fn system_blocking(&mut self, f: &mut dyn FnMut(&mut crate::system::Services)) -> bool {
+        // Blocked outside the scheduler (real time): the other tasks run meanwhile.
+        let done = self.unscheduled(|h| h.inner.system_blocking(f));
+        // A Ctrl-C is seen here too (a socket wait never waits on the scheduler's clock).
+        self.task.sched.check_outside();
+        done
     }
 
     fn position_events(&mut self) -> Option<&mut dyn crate::interp::host::PositionEventHost> {

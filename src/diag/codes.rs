@@ -161,6 +161,10 @@ codes! {
     ConfigSeveralMotionTasks = "rapidvc::config::several_motion_tasks";
     /// A section rapidvc reads but whose behaviour it does not implement.
     ConfigUnsupportedSection = "rapidvc::config::unsupported_section";
+    /// A system output (`SYSSIG_OUT`) whose status rapidvc does not drive.
+    ConfigUnsupportedSystemOutput = "rapidvc::config::unsupported_system_output";
+    /// A system output on a signal that is not a digital output of EIO.cfg.
+    ConfigSystemOutputSignal = "rapidvc::config::system_output_signal";
     /// The configured signals cannot be used together.
     ConfigSignals = "rapidvc::config::signals";
     /// A device asked for whose transmission protocol type rapidvc does not implement.

@@ -41,7 +41,7 @@
 //!    sensor answers it in process at once): `feedBack` = the measured (servo-delayed) position,
 //!    `planned` = the commanded one; the Cartesian parts are the TCP of `\Tool` relative to
 //!    the correction frame in pose mode and to `\WObj` in joint mode (guidance's feedback
-//!    rules); MOTORS_ON, RAPID_RUNNING (RAPID_STOPPED after [`EgmDriver::halt`]), MCI
+//!    rules); MOTORS_ON (MOTORS_OFF after [`EgmDriver::set_motors`]), RAPID_RUNNING (RAPID_STOPPED after [`EgmDriver::halt`]), MCI
 //!    RUNNING (STOPPED after a halt, ERROR after an error); `mciConvergenceMet`;
 //!    `utilizationRate` = requested EGM speed / MaxSpeedDeviation.
 //! 5. Convergence: every selected axis (direction) inside its window, held continuously for
@@ -234,6 +234,7 @@ pub struct EgmDriver {
     fb: Joints,
     fb_pose: WirePose,
     planned_pose: WirePose,
+    motors: MotorState,
     exec: RapidExecState,
     mci: MciState,
     error: Option<EgmError>,
@@ -378,6 +379,7 @@ impl EgmDriver {
             fb: *current,
             fb_pose: WirePose::IDENTITY,
             planned_pose: WirePose::IDENTITY,
+            motors: MotorState::On,
             exec: RapidExecState::Running,
             mci: MciState::Running,
             error: None,
@@ -545,6 +547,13 @@ impl EgmDriver {
     /// True while paused by [`EgmDriver::pause`].
     pub fn is_paused(&self) -> bool {
         self.outcome.is_none() && self.servo.is_paused()
+    }
+
+    /// The controller's motors were switched on or off: the feedback reports it from the
+    /// next message on (a controller switches them off only with the program stopped, so
+    /// the run is paused or halted then).
+    pub fn set_motors(&mut self, on: bool) {
+        self.motors = if on { MotorState::On } else { MotorState::Off };
     }
 
     /// The controller's speed ratio (0…1): scales the EGM speed (`egm::servo`, "Speed

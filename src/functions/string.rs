@@ -52,7 +52,12 @@ pub const STR_WHITE: &str = " \t\n\u{0B}\u{0C}\r";
 
 /// `StrLen(Str)`: the number of characters.
 pub fn str_len(s: &str) -> usize {
-    s.chars().count()
+    // ASCII text (checked a word at a time) has as many characters as bytes.
+    if s.is_ascii() {
+        s.len()
+    } else {
+        s.chars().count()
+    }
 }
 
 /// Check the 80-character limit (`ERR_STRTOOLNG`).

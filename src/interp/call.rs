@@ -91,7 +91,11 @@ impl Interp {
     #[inline(always)]
     pub(crate) fn push_value(&mut self, v: Value) {
         match self.stack.get_mut(self.sp) {
-            Some(slot) => *slot = v,
+            Some(slot) => {
+                // What the slot held (a record of an earlier call) is kept for reuse.
+                let old = std::mem::replace(slot, v);
+                self.spare_records.give_value(old);
+            }
             None => self.stack.push(v),
         }
         self.sp += 1;
@@ -112,7 +116,10 @@ impl Interp {
     #[inline(never)]
     fn push_num_slow(&mut self, x: f32) {
         match self.stack.get_mut(self.sp) {
-            Some(slot) => *slot = Value::Num(x),
+            Some(slot) => {
+                let old = std::mem::replace(slot, Value::Num(x));
+                self.spare_records.give_value(old);
+            }
             None => self.stack.push(Value::Num(x)),
         }
     }

@@ -15,6 +15,7 @@ mod natives;
 mod num;
 mod place;
 mod simple;
+mod strfast;
 mod val;
 
 use std::sync::Arc;

@@ -390,6 +390,20 @@ pub trait Host {
         None
     }
 
+    /// Run `f` on the system side where it may block for a short while (a socket
+    /// instruction waiting for its peer, a few tens of milliseconds per call): a host that
+    /// schedules several tasks lets the other tasks run meanwhile and notices a stop request
+    /// after it. False (and `f` not called) when this host has no system side.
+    fn system_blocking(&mut self, f: &mut dyn FnMut(&mut crate::system::Services)) -> bool {
+        match self.system() {
+            Some(s) => {
+                f(s);
+                true
+            }
+            None => false,
+        }
+    }
+
     /// The position-event capability (`TriggL`, `MoveLDO`, `SearchL`, …), when this
     /// controller has one.
     fn position_events(&mut self) -> Option<&mut dyn PositionEventHost> {

@@ -57,6 +57,19 @@ impl RStr {
         }
     }
 
+    /// Make the text the one ASCII character `b`: in place when this value alone holds
+    /// its text, else in a text of its own (which the next write reuses).
+    #[inline]
+    pub fn set_ascii(&mut self, b: u8) {
+        match self.unique_mut() {
+            Some(t) => {
+                t.clear();
+                t.push(char::from(b));
+            }
+            None => *self = RStr::from(String::from(char::from(b))),
+        }
+    }
+
     /// The text.
     #[inline(always)]
     pub fn as_str(&self) -> &str {
@@ -289,7 +302,19 @@ impl Value {
     /// length from `pool` ([`Spares`]), and the replaced record goes back into it. A value
     /// copied into a slot another routine left there, or into a slot a RETURN emptied,
     /// allocates nothing once the pool holds records of its shape.
+    #[inline(always)]
     pub(crate) fn reset_pooled(&mut self, v: &Value, pool: &mut Spares) {
+        // The usual case first: a record of numbers over one of as many components.
+        if let (Value::Record(a), Value::Record(b)) = (&mut *self, v)
+            && copy_nums(a, b)
+        {
+            return;
+        }
+        self.reset_pooled_any(v, pool)
+    }
+
+    /// [`Value::reset_pooled`] of any value.
+    fn reset_pooled_any(&mut self, v: &Value, pool: &mut Spares) {
         match (&mut *self, v) {
             (Value::Num(x), Value::Num(y)) => *x = *y,
             (_, Value::Record(b)) => {
@@ -326,6 +351,22 @@ impl Value {
     }
 }
 
+/// Copy the components of `b` into `a` when both are records of as many `num`s (`false`,
+/// with `a` partly written, for any other shape: the caller then writes every component).
+#[inline]
+fn copy_nums(a: &mut [Value], b: &[Value]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    for (x, y) in a.iter_mut().zip(b) {
+        match (x, y) {
+            (Value::Num(x), Value::Num(y)) => *x = *y,
+            _ => return false,
+        }
+    }
+    true
+}
+
 /// Records kept for reuse: replaced records go in, and a record of a wanted length comes
 /// out without allocating while one of that length is there. Their components are left as
 /// they were: whoever takes one overwrites every component.
@@ -353,9 +394,20 @@ impl Spares {
         }
     }
 
-    /// Keep `v` if it is a record (anything else is dropped).
-    #[inline]
+    /// Keep `v` if it is a record (anything else is dropped). A scalar, the usual case, is
+    /// let go without running any drop code.
+    #[inline(always)]
     pub(crate) fn give_value(&mut self, v: Value) {
+        match v {
+            v @ (Value::Num(_) | Value::Dnum(_) | Value::Bool(_) | Value::Absent) => {
+                std::mem::forget(v)
+            }
+            v => self.give_value_slow(v),
+        }
+    }
+
+    #[inline(never)]
+    fn give_value_slow(&mut self, v: Value) {
         if let Value::Record(r) = v {
             self.give(r);
         }

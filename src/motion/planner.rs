@@ -435,12 +435,15 @@ impl Planner {
         let args = cmd.args();
         let model = self.robot.model();
         let s = &self.settings;
-        let v_prog = match args.speed_override {
-            Some(SpeedOverride::V(v)) => v,
-            _ => args.speed.v_tcp,
+        // `\T` replaces the speed data: the move takes that time, only the robot's own limits
+        // (and VelSet's maximum) can make it longer.
+        let (v_prog, v_ori) = match args.speed_override {
+            Some(SpeedOverride::V(v)) => (v, args.speed.v_ori),
+            Some(SpeedOverride::T(_)) => (f64::INFINITY, f64::INFINITY),
+            None => (args.speed.v_tcp, args.speed.v_ori),
         };
         let v_tcp = limits::effective_tcp_speed(v_prog, s, model);
-        let v_ori = args.speed.v_ori * limits::override_factor(s);
+        let v_ori = v_ori * limits::override_factor(s);
         let mut v_max = f64::INFINITY;
         let mut a_max = f64::INFINITY;
         let moves = e.length > MIN_PATH_MM;

@@ -225,4 +225,89 @@ MODULE strings
     shared_p := shared_p + "1" + NumToStr(2, 0);
     Assert shared_p = "p12" \Msg:="a PERS appended in place";
   ENDPROC
+
+  ! One-character reads and one-operand appends run a byte-indexed fast path while the
+  ! text is ASCII; the character positions of text after a non-ASCII character, copies,
+  ! errors and the 80-character limit behave as everywhere else.
+  PROC test_one_character_reads_and_appends()
+    VAR string s := "a\C5b7";
+    VAR string c;
+    VAR string d;
+    VAR string r := "";
+    VAR num k := 3;
+    FOR i FROM 1 TO StrLen(s) DO
+      c := StrPart(s, i, 1);
+      r := r + c;
+    ENDFOR
+    Assert r = s \Msg:="the text rebuilt a character at a time";
+    Assert StrLen(s) = 4 \Msg:="StrLen counts characters";
+    c := StrPart(s, k, 1);
+    Assert c = "b" \Msg:="a position after a non-ASCII character counts characters";
+    c := StrPart(s, 2, 1);
+    Assert c = "\C5";
+    d := c;
+    c := StrPart(s, 1, 1);
+    Assert d = "\C5" \Msg:="a copy taken before a one-character StrPart";
+    Assert c = "a";
+    c := StrPart(c, 1, 1);
+    Assert c = "a" \Msg:="a character of the target itself";
+    d := r;
+    r := r + c;
+    Assert d = s \Msg:="a copy taken before a one-operand append";
+    Assert r = s + "a";
+    r := r + "\C5";
+    Assert StrLen(r) = 6;
+    Assert StrFind(r, 3, "\C5") = 6 \Msg:="StrFind counts characters";
+    Assert StrMatch(r, 1, "b7") = 3;
+  ENDPROC
+
+  PROC test_one_character_read_past_the_end()
+    VAR string s := "ab";
+    VAR string c := "x";
+    VAR num k := 3;
+    c := StrPart(s, k, 1);
+    Assert FALSE \Msg:="not reached";
+  ERROR
+    Assert ERRNO = ERR_OUTOFBND;
+    Assert c = "x" \Msg:="a failed read leaves the target as it was";
+  ENDPROC
+
+  PROC test_one_operand_append_at_the_limit()
+    VAR string s := "012345678901234567890123456789012345678901234567890123456789012345678901234567";
+    VAR string c := "9";
+    VAR string u;
+    s := s + c;
+    Assert StrLen(s) = 79;
+    u := "\C5" + s;
+    Assert StrLen(u) = 80 \Msg:="80 characters in 81 bytes";
+    s := s + c;
+    Assert StrLen(s) = 80;
+    s := s + c;
+    Assert FALSE \Msg:="not reached";
+  ERROR
+    Assert ERRNO = ERR_STRTOOLNG;
+    Assert StrLen(s) = 80 \Msg:="a too long result leaves the string as it was";
+  ENDPROC
+
+  FUNC num word_kind(string w)
+    TEST w
+    CASE "red", "green", "a_colour_with_a_long_name":
+      RETURN 1;
+    CASE "one", "two":
+      RETURN 2;
+    DEFAULT:
+      RETURN 0;
+    ENDTEST
+  ENDFUNC
+
+  PROC test_string_test_compares_whole_texts()
+    Assert word_kind("red") = 1;
+    Assert word_kind("rod") = 0 \Msg:="same length, other text";
+    Assert word_kind("re") = 0 \Msg:="a prefix";
+    Assert word_kind("reds") = 0;
+    Assert word_kind("a_colour_with_a_long_name") = 1;
+    Assert word_kind("a_colour_with_a_long_namE") = 0;
+    Assert word_kind("two") = 2;
+    Assert word_kind("") = 0;
+  ENDPROC
 ENDMODULE

@@ -62,6 +62,7 @@ pub(crate) fn start_motion_controller(
     config: &crate::config::Config,
     signals: &Arc<crate::signals::SignalTable>,
     uses_sockets: bool,
+    view: Option<&super::view_options::ViewRun>,
 ) -> Result<(Option<super::StartedController>, bool), String> {
     let Some(prog) = tasks
         .iter()
@@ -82,7 +83,7 @@ pub(crate) fn start_motion_controller(
         signals,
         uses_egm.then_some(&devices),
         uses_sockets,
-        None,
+        view,
     )?;
     let written = c.2;
     Ok((Some(c), written))
@@ -163,12 +164,6 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         Err(code) => return code,
     };
     let uses_sockets = tasks_use_sockets(&loaded);
-    if uses_sockets || args.realtime || args.view.needs_realtime() {
-        eprintln!(
-            "error: several tasks run in virtual time only: --realtime and programs with sockets are not supported with several tasks yet"
-        );
-        return ExitCode::from(2);
-    }
     let LoadedSystem {
         sources,
         tasks,
@@ -180,19 +175,49 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         ..
     } = loaded;
     let sources = Arc::new(sources);
+    let view = match super::start_view(
+        &args,
+        tasks.iter().filter_map(|t| t.program.as_deref()),
+        &sources,
+    ) {
+        Ok(v) => v,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
     let labels = tasks.len() > 1;
     let home = args.home.clone().or(home);
     let storage = Arc::new(MassStorage::new(home));
     let system = super::system_services(&args, &config, &sources);
     let motion = tasks.iter().position(|t| t.config.motion);
-    let (mut controller, egm_log_written) =
-        match start_motion_controller(&args, &tasks, &sources, &config, &signals, false) {
-            Ok(c) => c,
-            Err(msg) => {
-                eprintln!("error: {msg}");
-                return ExitCode::from(2);
-            }
-        };
+    let (mut controller, egm_log_written) = match start_motion_controller(
+        &args,
+        &tasks,
+        &sources,
+        &config,
+        &signals,
+        uses_sockets,
+        view.as_ref(),
+    ) {
+        Ok(c) => c,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
+    // Every task keeps the motion thread's clock: real time when it runs in real time
+    // (--realtime, an external EGM sensor, sockets without --lockstep), else virtual.
+    let realtime = match &controller {
+        Some((ctl, ..)) => ctl.is_realtime(),
+        None => args.realtime || (uses_sockets && !args.egm.lockstep),
+    };
+    if realtime && controller.is_none() && uses_sockets {
+        progress_line::clear();
+        if let Some(note) = socket_clock::note(args.realtime, args.egm.lockstep) {
+            eprintln!("{note}");
+        }
+    }
     let halt = Arc::new(AtomicBool::new(false));
     let (specs, idle_specs) = task_specs(&tasks, &idle, &config);
     let sched = Scheduler::new(
@@ -201,6 +226,30 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         Arc::clone(&halt),
         Some(Arc::clone(&interrupted)),
     );
+    if realtime {
+        // The scheduler's clock starts with the motion thread's (within a few milliseconds).
+        sched.use_real_time(Arc::new(crate::controller::MonotonicClock::new()));
+    }
+    if let Some((ctl, ..)) = controller.as_mut() {
+        sched.use_robot(ctl.state().setpoint.joints, ctl.position_cell());
+    }
+    let outputs = super::system_outputs(&config, &signals);
+    // The tasks still running, for the system outputs (a task leaves when its body ends).
+    let running = std::sync::Mutex::new(
+        tasks
+            .iter()
+            .filter(|t| t.program.is_some())
+            .map(|t| t.config.name.clone())
+            .collect::<Vec<_>>(),
+    );
+    let (running, outputs) = (&running, &outputs);
+    let show_running = move |error: bool| {
+        if let (Some(o), Ok(r)) = (outputs, running.lock()) {
+            o.show(&super::run_output_state(r.clone(), error));
+        }
+    };
+    show_running(false);
+    let session = view.as_ref().map(super::view_options::ViewRun::session);
     let store = SharedPers::new();
     let mut operator = Some(operator);
     let mut bodies: Vec<Box<dyn FnOnce() -> TaskEnd + Send + '_>> = Vec::new();
@@ -220,13 +269,15 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                     .with_outside_inputs(outside)
                     .with_stop_request(Arc::clone(&halt))
                     .with_lines(Arc::clone(&sources))
-                    .with_sink(print_output),
+                    .with_sink(teed(session.clone())),
             ),
             (_, ctl) => {
                 controller = ctl;
-                plain_host(&signals, services, print_output)
+                plain_host(&signals, services, teed(session.clone()))
             }
         };
+        // The view draws the motion task's work objects.
+        let frames = session.clone().filter(|_| Some(i) == motion);
         let host = TaskedHost::new(
             Arc::clone(&sched),
             bodies.len(),
@@ -253,7 +304,7 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
             None
         };
         let max_steps = args.max_steps;
-        let announce = args.trace.is_some() || args.plot.is_some();
+        let announce = args.trace.is_some() || args.plot.is_some() || args.view.wanted();
         bodies.push(Box::new(move || {
             let mut it = Interp::new(prog, &registry, Box::new(host));
             it.set_module_loader(Box::new(loader));
@@ -264,7 +315,13 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                 it.set_operator(op);
             }
             it.set_stack_budget(6 << 20);
-            let end = match it.init() {
+            let init = it.init();
+            if init.is_ok()
+                && let Some(v) = &frames
+            {
+                v.set_frames_from(&it.persistents());
+            }
+            let end = match init {
                 Err(e) => {
                     report_error(&name, &e, &sources);
                     sched.halt_all(format!("task {name} failed"));
@@ -291,19 +348,50 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                     )
                 }
             };
-            finish_task(&mut it, end, announce)
+            let end = finish_task(&mut it, end, announce, &sched);
+            if let Ok(mut r) = running.lock() {
+                r.retain(|t| *t != name);
+            }
+            show_running(false);
+            end
         }));
     }
     let ends = run_tasks(&sched, bodies);
-    let code = exit_code(
+    let drained = ends.iter().flatten().all(|e| e.drain);
+    let mut code = exit_code(
         ends.into_iter().map(|e| e.map(|e| (e.code, e.egm))),
         &args,
         egm_log_written,
     );
-    if interrupted.load(Ordering::Relaxed) {
+    let was_interrupted = interrupted.load(Ordering::Relaxed);
+    show_running(code != ExitCode::SUCCESS);
+    if let Some(v) = view {
+        let ended = if was_interrupted {
+            "program stopped by Ctrl-C"
+        } else {
+            super::view_options::ended_text(&code, drained)
+        };
+        if let Err(msg) = v.finish(ended) {
+            eprintln!("error: {msg}");
+            code = ExitCode::from(2);
+        }
+    }
+    if was_interrupted {
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
+}
+
+/// A task's output sink: printed, and shown in the view when there is one.
+fn teed(
+    view: Option<crate::output::view::ViewSession>,
+) -> impl FnMut(&crate::interp::Output) + Send + 'static {
+    move |o| {
+        if let Some(v) = &view {
+            v.output(o);
+        }
+        print_output(o);
+    }
 }
 
 /// The exit code of a system's run from its tasks' (code, EGM side) — `None` for a task
@@ -356,9 +444,6 @@ fn refuse(args: &RunArgs, loaded: &LoadedSystem) -> Option<String> {
             "--pers is not supported with several tasks yet (the task-global persistents are shared)"
                 .into(),
         );
-    }
-    if args.view.wanted() {
-        return Some("--view is not supported with several tasks yet".into());
     }
     if args.entry != "main" {
         return Some(
@@ -480,7 +565,7 @@ fn run_task(
 
 /// After a task's program: an EGM run still active ends, the motion task's controller
 /// finishes its moves (when the program ended normally) and prints its summary.
-fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool) -> TaskEnd {
+fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool, sched: &Scheduler) -> TaskEnd {
     if let Some(egm_host) = it.host_mut().egm()
         && let Err(e) = egm_host.egm_program_stopped()
     {
@@ -502,6 +587,8 @@ fn finish_task(it: &mut Interp, mut end: TaskEnd, announce: bool) -> TaskEnd {
         end.egm = host.take_egm();
         match host.finish(end.drain) {
             Ok(summary) => {
+                // The tasks still running read the robot where it came to rest.
+                sched.robot_rests_at(summary.final_joints);
                 if moved || announce {
                     print_summary(&summary);
                 }

@@ -181,7 +181,7 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         .filter_map(|t| t.program.as_deref())
         .any(run::socket_clock::uses_sockets);
     let (mut controller, egm_log_written) =
-        match start_motion_controller(a, &tasks, &sources, &config, &signals, uses_sockets) {
+        match start_motion_controller(a, &tasks, &sources, &config, &signals, uses_sockets, None) {
             Ok(c) => c,
             Err(msg) => {
                 eprintln!("error: {msg}");
@@ -202,6 +202,9 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         Arc::clone(shutdown),
         calendar,
     ));
+    if let Some(o) = run::system_outputs(&config, &signals) {
+        state.attach_outputs(Arc::new(o));
+    }
     let kind = |k: crate::config::sys::TaskType| match k {
         crate::config::sys::TaskType::Normal => TaskType::Normal,
         crate::config::sys::TaskType::Static => TaskType::Static,
@@ -251,6 +254,9 @@ pub(super) fn serve_system(args: &ServeArgs, shutdown: &Arc<AtomicBool>) -> Exit
         Some(Arc::clone(shutdown)),
     );
     sched.use_real_time(clock);
+    if let Some((ctl, ..)) = controller.as_mut() {
+        sched.use_robot(ctl.state().setpoint.joints, ctl.position_cell());
+    }
     sched.use_external_queues(Arc::new(DipcBridge {
         state: Arc::downgrade(&state),
         names: Mutex::new(Vec::new()),

@@ -40,8 +40,10 @@ pub(crate) struct Shared {
     pub run: Arc<RunSlot>,
     /// The running streams (the hook only ever `try_lock`s).
     pub streams: Mutex<Vec<StreamSlot>>,
-    /// False once the program has stopped (streams report RAPID_STOPPED).
+    /// True while the program is stopped or has ended (streams report RAPID_STOPPED).
     pub rapid_stopped: AtomicBool,
+    /// True while the controller's motors are off (every `EgmRobot` says MOTORS_OFF).
+    pub motors_off: AtomicBool,
     /// Lockstep: waits for a reply, and waits that ended without one.
     pub lockstep_waits: AtomicU64,
     /// Lockstep waits that timed out.
@@ -145,7 +147,9 @@ impl EgmHook {
             RapidExecState::Running
         };
         let now = sp.time;
+        let motors_on = !self.shared.motors_off.load(Ordering::Relaxed);
         for s in streams.iter_mut() {
+            s.stream.set_motors(motors_on);
             s.socket.receive(now, &mut s.stream);
             s.stream.tick(now, &sp.joints, exec);
             s.socket.send(now, &mut s.stream);
@@ -185,6 +189,8 @@ impl CycleHook for EgmHook {
         if let Some(mut slot) = try_slot(&self.shared.run)
             && let Some(g) = slot.as_mut()
         {
+            g.driver
+                .set_motors(!self.shared.motors_off.load(Ordering::Relaxed));
             g.socket.receive(now, &mut g.driver);
         }
     }

@@ -120,6 +120,14 @@ impl ControllerHost {
         }
     }
 
+    /// The program's state and the motors' (polled by the program side): what EGM reports
+    /// to its sensors ([`crate::controller::egm_controller::EgmController::set_controller_state`]).
+    pub fn set_controller_state(&mut self, program_running: bool, motors_on: bool) {
+        if let Some(egm) = self.egm.as_mut() {
+            egm.set_controller_state(program_running, motors_on);
+        }
+    }
+
     /// The program stops: the robot decelerates on its path and holds there, the moves kept
     /// planned (an EGM run pauses instead). Returns how many moves had not ended.
     pub fn hold_motion(&mut self) -> usize {

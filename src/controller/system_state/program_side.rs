@@ -14,7 +14,7 @@ use crate::ast::Storage;
 use crate::controller::ControllerHost;
 use crate::controller::robtarget_query;
 use crate::controller::service::{
-    Coordinate, CycleMode, Event, MechUnitInfo, ModuleInfo, OpMode, Request, RobotState,
+    Coordinate, CtrlState, CycleMode, Event, MechUnitInfo, ModuleInfo, OpMode, Request, RobotState,
     ServiceError, SymbolClass, SymbolInfo, SymbolPath, TaskExecState,
 };
 use crate::events::EventKind;
@@ -322,6 +322,12 @@ impl ProgramSide {
             self.last_poll = Instant::now();
             self.publish_pers(it, false);
             self.update_robot(it);
+            self.state.show_outputs();
+            // EGM tells its sensors whether the program runs and the motors are on.
+            let (running, motors) = (self.runs(), self.state.ctrl_state() == CtrlState::MotorsOn);
+            if let Some(h) = host(it) {
+                h.set_controller_state(running, motors);
+            }
             // RAPID's OpMode() reads the panel's mode.
             let mode = match self.state.opmode() {
                 OpMode::Auto => crate::system::info::OpMode::Auto,

@@ -20,7 +20,7 @@ use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::path_correction::{SeamProfile, Tracker};
 use crate::egm::registry::{MovePlan, TrackerKind};
 use crate::egm::session::{EgmSession, EgmStats, Outcome, SourceFilter};
-use crate::egm::types::{EgmMode, Joints, MciState, RapidExecState, Target};
+use crate::egm::types::{EgmMode, Joints, MciState, MotorState, RapidExecState, Target};
 use crate::robot::{Robot, ToolData, WobjData};
 use crate::signals::SignalTable;
 use crate::time::RobotTime;
@@ -285,7 +285,7 @@ impl CorrectionLink {
                     now,
                     (&measured, &input.commanded),
                     self.servo_delay,
-                    (RapidExecState::Running, MciState::Running),
+                    (MotorState::On, RapidExecState::Running, MciState::Running),
                 );
                 let sent = !self.failed && session.poll_transmit_into(now, &feedback, buf);
                 if sent {

@@ -59,7 +59,7 @@ impl EgmDriver {
             planned_external: ExternalAxes::NONE,
             planned_pose: self.planned_pose,
             planned_time: now.saturating_add(self.servo_delay),
-            motor_state: MotorState::On,
+            motor_state: self.motors,
             exec_state: self.exec,
             mci_state: self.mci,
             convergence_met: out.convergence_met,
@@ -105,7 +105,7 @@ pub(super) fn tcp_feedback(
     now: RobotTime,
     (measured, commanded): (&Joints, &Joints),
     servo_delay: Duration,
-    (exec_state, mci_state): (RapidExecState, MciState),
+    (motor_state, exec_state, mci_state): (MotorState, RapidExecState, MciState),
 ) -> RobotFeedback {
     let pose = |q: &Joints| {
         feedback_in_wobj(robot, q, tool, wobj)
@@ -122,7 +122,7 @@ pub(super) fn tcp_feedback(
         planned_external: ExternalAxes::NONE,
         planned_pose: pose(commanded),
         planned_time: now.saturating_add(servo_delay),
-        motor_state: MotorState::On,
+        motor_state,
         exec_state,
         mci_state,
         convergence_met: false,

@@ -9,7 +9,7 @@ use crate::egm::message_log::{LogKind, LogRing, LogRow};
 use crate::egm::registry::StreamPlan;
 use crate::egm::sensor::SensorPattern;
 use crate::egm::session::{EgmSession, Outcome, SourceFilter};
-use crate::egm::types::{Joints, MciState, RapidExecState};
+use crate::egm::types::{Joints, MciState, MotorState, RapidExecState};
 use crate::robot::{Robot, ToolData, WobjData};
 use crate::time::RobotTime;
 
@@ -47,6 +47,8 @@ pub struct EgmStream {
     servo_delay: Duration,
     events: EventQueue,
     log: LogRing,
+    /// The motors' state to report (on until [`EgmStream::set_motors`]).
+    motors: MotorState,
 }
 
 impl EgmStream {
@@ -105,7 +107,14 @@ impl EgmStream {
             servo_delay: ctx.options.servo_delay,
             events: EventQueue::with_capacity(),
             log: LogRing::new(&plan.name, ctx.options.log_capacity),
+            motors: MotorState::On,
         })
+    }
+
+    /// The controller's motors were switched on or off: the stream reports it from the next
+    /// message on.
+    pub fn set_motors(&mut self, on: bool) {
+        self.motors = if on { MotorState::On } else { MotorState::Off };
     }
 
     /// The identity's variable name.
@@ -130,7 +139,7 @@ impl EgmStream {
             now,
             (&measured, commanded),
             self.servo_delay,
-            (exec, MciState::Stopped),
+            (self.motors, exec, MciState::Stopped),
         );
         let sent = self
             .session

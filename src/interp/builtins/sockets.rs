@@ -141,6 +141,32 @@ fn sock_err(cx: &Ctx<'_>, e: SocketError) -> Unwind {
 /// Run `f` on the host's sockets.
 fn with<T>(cx: &mut Ctx<'_>, f: impl FnOnce(&mut Sockets) -> Result<T, SocketError>) -> Exec<T> {
     let r = cx.host().system().map(|sys| f(&mut sys.sockets));
+    outcome(cx, r)
+}
+
+/// [`with`] for a call that may block for up to [`crate::system::sockets::WAIT_SLICE`]:
+/// the host lets its other tasks run meanwhile (`Host::system_blocking`).
+fn with_blocking<T>(
+    cx: &mut Ctx<'_>,
+    f: impl FnOnce(&mut Sockets) -> Result<T, SocketError>,
+) -> Exec<T> {
+    let mut f = Some(f);
+    let mut r = None;
+    // The other tasks may run meanwhile: they see this task's shared persistents, and this
+    // task sees what they wrote (as around any wait).
+    cx.it.publish_shared();
+    cx.host().system_blocking(&mut |sys| {
+        if let Some(f) = f.take() {
+            r = Some(f(&mut sys.sockets));
+        }
+    });
+    cx.it.fetch_shared();
+    outcome(cx, r)
+}
+
+/// The RAPID side of a sockets call: its value, its RAPID error, or "not supported" when
+/// the host has no sockets (`None`).
+fn outcome<T>(cx: &mut Ctx<'_>, r: Option<Result<T, SocketError>>) -> Exec<T> {
     match r {
         Some(Ok(v)) => Ok(v),
         Some(Err(e)) => Err(sock_err(cx, e)),
@@ -162,8 +188,13 @@ fn wait<T>(
     time: f64,
     mut step: impl FnMut(&mut Sockets, &Deadline) -> Result<Option<T>, SocketError>,
 ) -> Exec<T> {
+    // What can be done at once (data already there, room to send) is done without waiting
+    // and without handing the processor to the other tasks.
+    if let Some(v) = with(cx, |s| step(s, &Deadline::after_secs(0.0)))? {
+        return Ok(v);
+    }
     loop {
-        if let Some(v) = with(cx, |s| step(s, &deadline))? {
+        if let Some(v) = with_blocking(cx, |s| step(s, &deadline))? {
             return Ok(v);
         }
         if deadline.passed() {

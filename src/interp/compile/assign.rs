@@ -121,7 +121,14 @@ pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
                     let sink = LocalSink(s, pl);
                     typed_left!(a, |a| typed_right!(b, |b| arith_into(op, a, b, vs, sink)))
                 }
-                sink => typed_left!(a, |a| typed_right!(b, |b| arith_into(op, a, b, vs, sink))),
+                sink => match b {
+                    // `q.x := q.x + q.vx`: a component of a local record on the right too.
+                    super::num::Opnd::V(super::num::Leaf::F(s, f, g, sp)) => {
+                        let b = super::num::FieldSrc(s, f, g, sp);
+                        typed_left!(a, |a| arith_into(op, a, b, vs, sink))
+                    }
+                    b => typed_left!(a, |a| typed_right!(b, |b| arith_into(op, a, b, vs, sink))),
+                },
             }
         }
         ExprKind::NumModDivK(a, k, is_mod) => {

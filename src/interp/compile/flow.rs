@@ -196,7 +196,9 @@ impl Interp {
                 hit
             }
             Cases::Str(subject, cases) => subject.with(self, c, |s| {
-                cases.iter().position(|vals| vals.iter().any(|v| **v == *s))
+                cases
+                    .iter()
+                    .position(|vals| vals.iter().any(|v| super::strfast::eq_text(v, s)))
             })?,
             Cases::Any(subject, cases) => {
                 let v = self.eval(p, subject)?;

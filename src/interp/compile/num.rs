@@ -23,8 +23,63 @@ pub(crate) enum Leaf {
     G(u32, Span),
     /// `a{i}` of a 1-D local or global array with a leaf index, and the IR load (slow path).
     E(Box<(Elem, Expr)>),
+    /// `slot.f`, or `slot.f.g` ([`NO_FIELD`] for none), of a record held by a local (`q.x`,
+    /// `p.trans.z`): one or two indexed loads, no place walk.
+    F(u32, u16, u16, Span),
     /// Any other place holding a `num`, and the expression's span.
     P(Box<(CPlace, Span)>),
+}
+
+/// No second component in [`Leaf::F`].
+pub(crate) const NO_FIELD: u16 = u16::MAX;
+
+/// The local and components of `slot.f` or `slot.f.g` (a `num` read from a local record).
+fn local_field(cx: &Cx, e: &Expr, pl: &Place) -> Option<(u32, u16, u16)> {
+    let Root::Local(s) = pl.root else {
+        return None;
+    };
+    if !cx.is_num(e) {
+        return None;
+    }
+    match *pl.path {
+        [PathOp::Field(f)] if f != NO_FIELD => Some((s, f, NO_FIELD)),
+        [PathOp::Field(f), PathOp::Field(g)] if f != NO_FIELD && g != NO_FIELD => Some((s, f, g)),
+        _ => None,
+    }
+}
+
+/// The `num` at `slot.f` (or `slot.f.g`) of the current frame, when the local holds a
+/// record with a `num` there (`None`: the general path decides, with its errors).
+#[inline(always)]
+pub(crate) fn field_num(it: &Interp, s: u32, f: u16, g: u16) -> Option<f32> {
+    let Some(Value::Record(fs)) = it.stack.get(it.bp + s as usize) else {
+        return None;
+    };
+    let mut v = fs.get(f as usize)?;
+    if g != NO_FIELD {
+        let Value::Record(gs) = v else {
+            return None;
+        };
+        v = gs.get(g as usize)?;
+    }
+    match v {
+        Value::Num(x) => Some(*x),
+        _ => None,
+    }
+}
+
+/// A component of a local record read inline, as its own type (see [`LocalSrc`]).
+pub(crate) struct FieldSrc(pub u32, pub u16, pub u16, pub Span);
+
+impl Src for FieldSrc {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        match field_num(it, self.0, self.1, self.2) {
+            Some(x) => x,
+            None => it.field_slow(c, self.0, self.1, self.2, self.3),
+        }
+    }
 }
 
 impl Leaf {
@@ -34,10 +89,11 @@ impl Leaf {
             ExprKind::Num(x) => Leaf::K(*x),
             ExprKind::Local(s) => Leaf::L(*s, e.span),
             ExprKind::Global(g) => Leaf::G(*g, e.span),
-            ExprKind::Load(pl) => match Elem::of(pl) {
-                Some(el) => Leaf::E(Box::new((el, e.clone()))),
-                None if cx.is_num(e) => Leaf::P(Box::new((CPlace::new(cx, pl), e.span))),
-                None => return None,
+            ExprKind::Load(pl) => match (Elem::of(pl), local_field(cx, e, pl)) {
+                (Some(el), _) => Leaf::E(Box::new((el, e.clone()))),
+                (None, Some((s, f, g))) => Leaf::F(s, f, g, e.span),
+                (None, None) if cx.is_num(e) => Leaf::P(Box::new((CPlace::new(cx, pl), e.span))),
+                (None, None) => return None,
             },
             _ => return None,
         })
@@ -57,6 +113,10 @@ impl Leaf {
                 _ => it.leaf_slow(c, ExprKind::Global(*g), *span),
             },
             Leaf::E(b) => elem_get(b, it, c),
+            Leaf::F(s, f, g, span) => match field_num(it, *s, *f, *g) {
+                Some(x) => x,
+                None => it.field_slow(c, *s, *f, *g, *span),
+            },
             Leaf::P(b) => b.0.num(it, c, b.1),
         }
     }
@@ -157,13 +217,23 @@ impl<A: Src, const MOD: bool> Src for ModDivSrc<A, MOD> {
     }
 }
 
-/// `$body` with `$a` bound to operand `$o` as a typed source when it is a local, or `a MOD k`
-/// / `a DIV k` of a local (the left operand of comparisons and arithmetic), else as itself.
+/// `$body` with `$a` bound to operand `$o` as a typed source when it is a local, a component
+/// of a local record, or `a MOD k` / `a DIV k` of a local (the left operand of comparisons
+/// and arithmetic), else as itself.
 macro_rules! typed_left {
     ($o:expr, |$a:ident| $body:expr) => {
         match $o {
             $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::L(s, sp)) => {
                 let $a = $crate::interp::compile::num::LocalSrc(s, sp);
+                $body
+            }
+            $crate::interp::compile::num::Opnd::V($crate::interp::compile::num::Leaf::F(
+                s,
+                f,
+                g,
+                sp,
+            )) => {
+                let $a = $crate::interp::compile::num::FieldSrc(s, f, g, sp);
                 $body
             }
             $crate::interp::compile::num::Opnd::M(m) => match *m {
@@ -422,7 +492,59 @@ fn fallback(e: &Expr) -> NumFn {
 /// `a op b` for a `num` arithmetic operator (a constant right operand is read without
 /// checks).
 fn arith(op: BinOp, a: Opnd, b: Opnd, span: Span) -> NumFn {
-    typed_left!(a, |a| typed_right!(b, |b| arith_t(op, a, b, span)))
+    // Components of local records (`a.x`) and their products (`a.x * b.y`, the terms of
+    // pose math) are read as their own types too.
+    use RecOpnd::{F, M, O};
+    match (RecOpnd::of(a), RecOpnd::of(b)) {
+        (F(a), F(b)) => arith_t(op, a, b, span),
+        (M(a), M(b)) => arith_t(op, a, b, span),
+        (F(a), M(b)) => arith_t(op, a, b, span),
+        (M(a), F(b)) => arith_t(op, a, b, span),
+        (M(a), O(b)) => arith_t(op, a, b, span),
+        (O(a), M(b)) => arith_t(op, a, b, span),
+        (F(a), O(b)) => typed_right!(b, |b| arith_t(op, a, b, span)),
+        (O(a), F(b)) => typed_left!(a, |a| arith_t(op, a, b, span)),
+        (O(a), O(b)) => typed_left!(a, |a| typed_right!(b, |b| arith_t(op, a, b, span))),
+    }
+}
+
+/// An operand of arithmetic, with components of local records set apart.
+enum RecOpnd {
+    /// `r.f` of a local record.
+    F(FieldSrc),
+    /// `r.f * s.g` of local records.
+    M(MulSrc),
+    /// Anything else.
+    O(Opnd),
+}
+
+impl RecOpnd {
+    fn of(o: Opnd) -> RecOpnd {
+        match o {
+            Opnd::V(Leaf::F(s, f, g, sp)) => RecOpnd::F(FieldSrc(s, f, g, sp)),
+            Opnd::B(b) => match *b {
+                (BinOp::NumMul, Leaf::F(s, f, g, sp), Leaf::F(t, h, k, tp), span) => {
+                    RecOpnd::M(MulSrc(FieldSrc(s, f, g, sp), FieldSrc(t, h, k, tp), span))
+                }
+                other => RecOpnd::O(Opnd::B(Box::new(other))),
+            },
+            o => RecOpnd::O(o),
+        }
+    }
+}
+
+/// `a.f * b.g` of two components of local records, as its own type.
+pub(crate) struct MulSrc(FieldSrc, FieldSrc, Span);
+
+impl Src for MulSrc {
+    const FALLIBLE: bool = true;
+    #[inline(always)]
+    fn get(&self, it: &mut Interp, c: &Code) -> f32 {
+        let span = self.2;
+        bin(it, c, &self.0, &self.1, |it, x, y| {
+            it.num_result(x * y, span)
+        })
+    }
 }
 
 fn arith_t<A: Src, B: Src>(op: BinOp, a: A, b: B, span: Span) -> NumFn {
@@ -448,6 +570,30 @@ impl Interp {
     #[inline(never)]
     fn leaf_slow(&mut self, c: &Code, kind: ExprKind, span: Span) -> f32 {
         self.nf_slow(&c.prog, &Expr { kind, span })
+    }
+
+    /// A [`Leaf::F`] whose local holds no record with a `num` there (a missing optional
+    /// parameter): the tree-walking path decides, on the place as lowered (whose span is
+    /// the expression's).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn field_slow(&mut self, c: &Code, s: u32, f: u16, g: u16, span: Span) -> f32 {
+        let mut path = vec![PathOp::Field(f)];
+        if g != NO_FIELD {
+            path.push(PathOp::Field(g));
+        }
+        let pl = Place {
+            root: Root::Local(s),
+            path: path.into(),
+            span,
+        };
+        self.nf_slow(
+            &c.prog,
+            &Expr {
+                kind: ExprKind::Load(Box::new(pl)),
+                span,
+            },
+        )
     }
 
     /// The tree-walking path for an expression whose fast path gave up before any side

@@ -303,6 +303,21 @@ impl CPlace {
         let mut buf = [0i64; MAX_INDICES];
         self.indices(it, c, &mut buf)?;
         let idx = &buf[..self.idx.len()];
+        // `a{i} := v` of a 1-D array held by a local or global (an array of records), when
+        // the index is in bounds and neither is an array: the element is replaced directly.
+        if let ([CStep::Elem(1)], [i]) = (&*self.steps, idx)
+            && !matches!(v, Value::Array(_))
+            && let Some(Value::Array(a)) = it.root_slot(self.root)
+            && a.rank == 1
+            && *i >= 1
+            && *i <= a.dims[0] as i64
+            && let Some(cur) = a.data.get_mut((*i - 1) as usize)
+            && !matches!(cur, Value::Array(_))
+        {
+            let old = std::mem::replace(cur, v);
+            it.recycle(old);
+            return Ok(());
+        }
         let (bp, rbp) = (it.bp, it.rbp);
         let Interp {
             stack,

@@ -165,7 +165,7 @@ impl StrPart {
     pub(crate) fn append(&self, it: &mut Interp, c: &Code, buf: &mut String) -> Exec<()> {
         match self {
             StrPart::Text(f) => f(it, c, buf),
-            _ => self.with(it, c, |s| buf.push_str(s)),
+            _ => self.with(it, c, |s| super::strfast::push_text(buf, s)),
         }
     }
 
@@ -340,15 +340,15 @@ pub(crate) fn str_eq(cx: &Cx, a: &Expr, b: &Expr, eq: bool) -> Option<super::Boo
     // Against a constant, nothing needs to be copied.
     if let StrPart::Lit(k) = &b {
         let k = k.clone();
-        return Some(Box::new(
-            move |it, c| Ok(a.with(it, c, |s| s == &*k)? == eq),
-        ));
+        return Some(Box::new(move |it, c| {
+            Ok(a.with(it, c, |s| super::strfast::eq_text(s, &k))? == eq)
+        }));
     }
     if let StrPart::Lit(k) = &a {
         let k = k.clone();
-        return Some(Box::new(
-            move |it, c| Ok(b.with(it, c, |s| s == &*k)? == eq),
-        ));
+        return Some(Box::new(move |it, c| {
+            Ok(b.with(it, c, |s| super::strfast::eq_text(s, &k))? == eq)
+        }));
     }
     Some(Box::new(move |it, c| {
         let mut tmp = it.strbufs.pop().unwrap_or_default();
@@ -504,13 +504,18 @@ fn assign_nums(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
             && r.iter().all(|v| matches!(v, Value::Num(_)))
         {
             for (v, x) in r.iter_mut().zip(xs) {
-                *v = Value::Num(*x);
+                if let Value::Num(v) = v {
+                    *v = *x;
+                }
             }
             return Ok(());
         }
         let mut out = it.spare_record(xs.len());
         for (v, x) in out.iter_mut().zip(xs) {
-            *v = Value::Num(*x);
+            match v {
+                Value::Num(v) => *v = *x,
+                v => *v = Value::Num(*x),
+            }
         }
         sink.put(it, c, Value::Record(out))
     }))
@@ -559,7 +564,9 @@ fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
             }
             [] => false,
         };
-    Some(match src {
+    let root = sink.root();
+    let spine = concat_spine(value);
+    let f: StmtFn = match src {
         Src::Concat(parts) if appends => Box::new(move |it, c| {
             match it.text_in_place(sink.root(), |it, t| it.concat_into(c, &parts, 1, t)) {
                 Some(r) => r,
@@ -572,6 +579,12 @@ fn assign_text(cx: &Cx, place: &Place, value: &Expr) -> Option<StmtFn> {
         Src::Part(p) => {
             Box::new(move |it, c| it.store_text(c, &sink, |it, buf| p.append(it, c, buf)))
         }
+    };
+    // The shapes `strfast` runs without the general machinery when it can.
+    Some(match (root, spine.as_slice()) {
+        (Some(root), [_, (x, _)]) if appends => super::strfast::append(cx, root, x, f),
+        (Some(root), _) => super::strfast::part(cx, root, value, f),
+        (None, _) => f,
     })
 }
 
@@ -611,7 +624,7 @@ impl Interp {
 
     /// The slot of a local or global.
     #[inline(always)]
-    fn root_slot(&mut self, root: Root) -> Option<&mut Value> {
+    pub(super) fn root_slot(&mut self, root: Root) -> Option<&mut Value> {
         match root {
             Root::Local(s) => self.stack.get_mut(self.bp + s as usize),
             Root::Global(g) => self.globals.get_mut(g as usize),
@@ -665,7 +678,8 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
             let bp = it.bp;
             match it.stack.get_mut(bp + s) {
                 Some(slot @ Value::Record(_)) => {
-                    it.ret = std::mem::replace(slot, Value::Absent);
+                    let v = std::mem::replace(slot, Value::Absent);
+                    it.set_ret(v);
                     Err(Unwind::Return)
                 }
                 Some(Value::Absent) | None => Err(it.error(
@@ -674,7 +688,8 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
                     "the optional parameter was not passed",
                 )),
                 Some(v) => {
-                    it.ret = v.clone();
+                    let v = v.clone();
+                    it.set_ret(v);
                     Err(Unwind::Return)
                 }
             }
@@ -682,7 +697,18 @@ pub(crate) fn ret(cx: &Cx, value: &Expr) -> StmtFn {
     }
     let v = self::value(cx, value);
     Box::new(move |it, c| {
-        it.ret = v(it, c)?;
+        let v = v(it, c)?;
+        it.set_ret(v);
         Err(Unwind::Return)
     })
+}
+
+impl Interp {
+    /// Make `v` the FUNC's result (what the slot held, a scalar or nothing after the last
+    /// call's result was taken, goes to the pool of spare records or is let go).
+    #[inline(always)]
+    fn set_ret(&mut self, v: Value) {
+        let old = std::mem::replace(&mut self.ret, v);
+        self.recycle(old);
+    }
 }

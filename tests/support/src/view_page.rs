@@ -14,6 +14,18 @@ pub fn page_data(html: &str) -> Value {
     serde_json::from_str(&body[open..close]).expect("data is JSON")
 }
 
+/// The TP lines of a page's log (`[time, "tp", text]` entries), in order.
+pub fn tp_lines(log: &Value) -> Vec<&str> {
+    log.as_array()
+        .map(|a| {
+            a.iter()
+                .filter(|e| e[1] == "tp")
+                .filter_map(|e| e[2].as_str())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// A column of differences of quantised integers, as values.
 pub fn decode(col: &Value, scale: f64) -> Vec<f64> {
     let mut acc = 0i64;
