@@ -4,7 +4,7 @@
 //! Names are compared case-folded everywhere (RAPID is case-insensitive); use
 //! [`Ident::folded`] rather than comparing `node` strings directly.
 
-use crate::source::{SourceText, Span, Spanned};
+use crate::source::{SourceId, SourceText, Span, Spanned};
 
 mod dump;
 pub(crate) mod literal;
@@ -80,10 +80,126 @@ pub enum ModuleItem {
     Alias(Box<AliasDecl>),
     /// `VAR`/`PERS`/`CONST` data.
     Data(Box<DataDecl>),
+    /// `VAR`/`PERS`/`CONST` data of the simplest shape, kept as its text (see
+    /// [`PackedData`]): most items of a large module. [`ModuleItem::data`] gives the
+    /// declaration of either form.
+    PackedData(PackedData),
     /// `PROC`/`FUNC`/`TRAP`.
     Routine(Box<Routine>),
     /// A placeholder (`<TDN>`, `<DDN>`, `<RDN>`) standing for a declaration.
     Placeholder(Spanned<Placeholder>),
+}
+
+impl ModuleItem {
+    /// The data declaration of a [`ModuleItem::Data`] or [`ModuleItem::PackedData`] item
+    /// (`None` for any other item), in the file `source` whose text is `text`
+    /// ([`File::text`]).
+    pub fn data(&self, source: SourceId, text: &str) -> Option<std::borrow::Cow<'_, DataDecl>> {
+        match self {
+            ModuleItem::Data(d) => Some(std::borrow::Cow::Borrowed(d)),
+            ModuleItem::PackedData(p) => Some(std::borrow::Cow::Owned(p.unpack(source, text))),
+            _ => None,
+        }
+    }
+}
+
+/// A module data declaration kept as its text in the file ([`File::text`]): `[LOCAL] [TASK]
+/// VAR|PERS|CONST type name [:= value];` without array dimensions, the value a name, a plain
+/// literal or a literal aggregate, as target and tool data are written. It is 8 bytes inside
+/// its [`ModuleItem`] instead of a boxed [`DataDecl`] of 160. The parser packs a declaration
+/// only when reading its text back gives the declaration it built, spans included
+/// (`ast/literal.rs`), so unpacking cannot fail.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub struct PackedData {
+    /// The first byte of the declaration.
+    start: u32,
+    /// The byte after its `;`.
+    end: u32,
+}
+
+impl PackedData {
+    /// The declaration `decl` written in `text` (the text of the file `source`), packed when
+    /// reading it back gives `decl` again.
+    pub(crate) fn pack(source: SourceId, text: &str, decl: &DataDecl) -> Option<Self> {
+        let (start, end) = (decl.span.start as usize, decl.span.end as usize);
+        let simple = decl.dims.is_empty()
+            && match decl.init.as_ref().map(|e| &e.kind) {
+                None
+                | Some(
+                    ExprKind::PackedAggregate(_)
+                    | ExprKind::Num(_)
+                    | ExprKind::Str(_)
+                    | ExprKind::Bool(_)
+                    | ExprKind::Name(_)
+                    | ExprKind::Unary { .. },
+                ) => true,
+                Some(_) => false,
+            };
+        // (A packed aggregate value was just read by the parser: its end is known.)
+        let aggregate_end = match &decl.init {
+            Some(Expr {
+                kind: ExprKind::PackedAggregate(_),
+                span,
+            }) => (span.end as usize).checked_sub(start),
+            _ => None,
+        };
+        let read = literal::read_data_decl(source, text.get(start..end)?, start, aggregate_end);
+        (simple && read.as_ref() == Some(decl)).then_some(PackedData {
+            start: start as u32,
+            end: end as u32,
+        })
+    }
+
+    /// The declaration as written in the file's `text`.
+    pub fn text<'t>(&self, text: &'t str) -> &'t str {
+        text.get(self.start as usize..self.end as usize)
+            .unwrap_or("")
+    }
+
+    /// The whole declaration, in the file `source`.
+    pub fn span(&self, source: SourceId) -> Span {
+        Span::new(source, self.start as usize, self.end as usize)
+    }
+
+    /// The declared name as written in the file's `text`, and where (in the file `source`),
+    /// without reading the rest of the declaration.
+    pub fn name<'t>(&self, source: SourceId, text: &'t str) -> (&'t str, Span) {
+        let mut pos = 0;
+        let (a, z) = literal::read_data_head(self.text(text), &mut pos).map_or((0, 0), |h| h.name);
+        let at = self.start as usize;
+        (
+            text.get(at + a..at + z).unwrap_or(""),
+            Span::new(source, at + a, at + z),
+        )
+    }
+
+    /// The [`DataDecl`] of this declaration in the file `source` whose text is `text`: the one
+    /// the parser built, node for node.
+    pub fn unpack(&self, source: SourceId, text: &str) -> DataDecl {
+        literal::read_data_decl(source, self.text(text), self.start as usize, None).unwrap_or_else(
+            || {
+                // (Not reached: the text was read back when it was packed. A declaration without
+                // a type would be reported as an unknown type, so it would not go unnoticed.)
+                let span = self.span(source);
+                DataDecl {
+                    local: false,
+                    task: false,
+                    storage: Storage::Var,
+                    ty: Spanned::new(EcoString::new(), span),
+                    name: Spanned::new(EcoString::new(), span),
+                    dims: Vec::new(),
+                    init: None,
+                    span,
+                }
+            },
+        )
+    }
+}
+
+impl std::fmt::Debug for PackedData {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "PackedData({}..{})", self.start, self.end)
+    }
 }
 
 /// `[LOCAL] RECORD name  type comp; …  ENDRECORD`.
@@ -137,7 +253,7 @@ pub enum Storage {
 }
 
 /// `[LOCAL|TASK] VAR|PERS|CONST type name [{dims}] [:= init];`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DataDecl {
     /// `LOCAL` was given.
     pub local: bool,

@@ -107,8 +107,9 @@ pub struct Global {
     pub ty: Ty,
     /// Array sizes (empty for scalars).
     pub dims: Vec<u32>,
-    /// Initial value (absent: default value, or for PERS the stored value).
-    pub init: Option<Expr>,
+    /// Initial value (absent: default value, or for PERS the stored value). Boxed: a large
+    /// module holds hundreds of thousands of globals, and `rapidvc check` keeps none.
+    pub init: Option<Box<Expr>>,
     /// The declaration.
     pub span: Span,
 }

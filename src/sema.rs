@@ -173,8 +173,13 @@ pub(crate) struct Checker<'a> {
     /// The text of each input file (packed aggregates and call arguments are read from it).
     texts: HashMap<crate::source::SourceId, &'a str, rustc_hash::FxBuildHasher>,
     globals: Vec<Global>,
-    /// The declarations behind each module global (several for a shared PERS).
-    global_decls: Vec<Vec<(ModuleId, &'a ast::DataDecl)>>,
+    /// The declaration behind each module global: a data item ([`ast::ModuleItem::Data`] or
+    /// [`ast::ModuleItem::PackedData`], read with [`Checker::data_decl`]) of a module. (16
+    /// bytes a global; the rare further declarations of a shared PERS are in
+    /// `shared_decls`.)
+    global_decls: Vec<Option<(ModuleId, &'a ast::ModuleItem)>>,
+    /// The further declarations of shared PERS globals, by global.
+    shared_decls: HashMap<u32, Vec<(ModuleId, &'a ast::ModuleItem)>>,
     /// Globals by upper-cased name. (A module of 250,000 data declarations holds as many
     /// entries: a name of up to 15 bytes is kept inline, and the list is sized exactly.)
     data_syms: HashMap<ast::EcoString, Box<[GlobalId]>, rustc_hash::FxBuildHasher>,
@@ -250,6 +255,7 @@ impl<'a> Checker<'a> {
             texts: HashMap::default(),
             globals: Vec::new(),
             global_decls: Vec::new(),
+            shared_decls: HashMap::new(),
             data_syms: HashMap::default(),
             routines: Vec::new(),
             routine_asts: Vec::new(),
@@ -279,6 +285,28 @@ impl<'a> Checker<'a> {
             stdlib,
         });
         self.module_asts.push(m);
+    }
+
+    /// The declaration of the data item `item` of module `m` (`None` for an item that is
+    /// not data).
+    fn data_decl(
+        &self,
+        m: ModuleId,
+        item: &'a ast::ModuleItem,
+    ) -> Option<std::borrow::Cow<'a, ast::DataDecl>> {
+        let source = self.modules.get(m.0 as usize)?.source;
+        let text = self.texts.get(&source).copied().unwrap_or("");
+        item.data(source, text)
+    }
+
+    /// Every declaration behind the global `gi`, the first one first.
+    fn decls_of(&self, gi: usize) -> Vec<(ModuleId, &'a ast::ModuleItem)> {
+        let first = self.global_decls.get(gi).copied().flatten();
+        let more = self.shared_decls.get(&(gi as u32));
+        first
+            .into_iter()
+            .chain(more.into_iter().flatten().copied())
+            .collect()
     }
 
     /// The text of the file `span` is in ("" for a file that is not an input).

@@ -1,7 +1,8 @@
 //! Packed literal aggregates (`ast::ExprKind::PackedAggregate`: a robtarget or tooldata
 //! literal kept as its text instead of a tree of some twenty nodes) and packed call arguments
-//! (`ast::CallArgs::Packed`: `MoveL p10, v500, z10, tool0;` kept as its text) change nothing
-//! but memory:
+//! (`ast::CallArgs::Packed`: `MoveL p10, v500, z10, tool0;` kept as its text) and packed data
+//! declarations (`ast::ModuleItem::PackedData`: `PERS robtarget p := [...];` kept as its
+//! text) change nothing but memory:
 //! the same AST dump, the same diagnostics (rendered and as JSON), the same lowered program
 //! (what both interpreter engines run) whether the parser packs them or not, and a diagnostic
 //! about one element of a packed aggregate points at that element.
@@ -116,16 +117,13 @@ fn outcome(text: &str, pack: bool) -> (Outcome, rapidvc::ast::File) {
 }
 
 /// The initial value of the first data declaration of the first module.
-fn first_init(file: &rapidvc::ast::File) -> &ExprKind {
+fn first_init(file: &rapidvc::ast::File) -> ExprKind {
     let item = file.modules[0]
         .items
         .iter()
-        .find_map(|i| match i {
-            ModuleItem::Data(d) => d.init.as_ref(),
-            _ => None,
-        })
+        .find_map(|i| i.data(file.span.source, &file.text)?.init.clone())
         .expect("a data declaration with a value");
-    &item.kind
+    item.kind
 }
 
 /// A literal as it may stand in a literal aggregate: numbers of every form (some out of the
@@ -229,6 +227,12 @@ fn call_arg() -> impl Strategy<Value = String> {
     ]);
     let other = prop::sample::select(vec![
         "Offs(p10, 0, 0, 5)",
+        "Offs(p10,-1, 2.5 ,-0)",
+        "Offs (RelTool(p10, 0, 0, 1 \\Rz:=90), 0, 0, 5)",
+        "Abs()",
+        "NumToStr(n, 0)",
+        "Offs(p10, 0, 0, n + 1)",
+        "CRobT(\\Tool:=tool0 \\WObj:=wobj0)",
         "n + 1",
         "-n",
         "(n)",
@@ -283,6 +287,105 @@ fn calls() -> impl Strategy<Value = String> {
     })
 }
 
+/// A module data declaration of every form: keywords in any case (some repeated or out of
+/// order), white space and comments between every token, values that are packed (none,
+/// names, literals, literal aggregates) and values that are not (expressions, calls, array
+/// dimensions, placeholders), some with a diagnostic, some duplicated names.
+fn data_decl() -> impl Strategy<Value = String> {
+    let head = prop::sample::select(vec![
+        "VAR",
+        "PERS",
+        "CONST",
+        "var",
+        "Pers",
+        "LOCAL VAR",
+        "LOCAL PERS",
+        "TASK PERS",
+        "LOCAL CONST",
+        "TASK VAR",
+        "LOCAL TASK PERS",
+        "TASK LOCAL PERS",
+        "LOCAL LOCAL VAR",
+    ]);
+    let ty = prop::sample::select(vec![
+        "num",
+        "robtarget",
+        "pos",
+        "string",
+        "bool",
+        "benchnum",
+        "Nope",
+    ]);
+    let name = prop::sample::select(vec!["a", "b", "target_10", "n", "PI", "<ID>"]);
+    let other = prop::sample::select(vec![
+        "n + 1",
+        "-n",
+        "(3)",
+        "Abs(-1)",
+        "[n, 2, 3]",
+        "<EXP>",
+        "p.trans",
+        "-  -2",
+    ]);
+    let value = prop_oneof![
+        2 => Just(String::new()),
+        3 => leaf(),
+        2 => aggregate(),
+        1 => prop::sample::select(vec!["n", "TRUE", "false", "wobj0"]).prop_map(str::to_string),
+        1 => other.prop_map(str::to_string),
+    ];
+    let dims = prop::sample::select(vec!["", "", "", "{2}", "{n}"]);
+    (head, gap(), ty, gap(), name, dims, gap(), value, gap()).prop_map(
+        |(head, g1, ty, g2, name, dims, g3, value, g4)| {
+            let value = if value.is_empty() {
+                String::new()
+            } else {
+                format!("{g3}:={g4}{value}")
+            };
+            format!("  {head} {g1}{ty} {g2}{name}{dims}{value}{g4};\n")
+        },
+    )
+}
+
+/// A module of data declarations (used by a routine, so their values are lowered too).
+fn datas() -> impl Strategy<Value = String> {
+    prop::collection::vec(data_decl(), 1..10).prop_map(|decls| {
+        format!(
+            "MODULE M\n  ALIAS num benchnum;\n{}  PROC main()\n    TPWrite \"x\" \\Num:=n;\n  ENDPROC\nENDMODULE\n",
+            decls.concat()
+        )
+    })
+}
+
+/// The items of the first module of a parsed file that are packed data declarations.
+fn packed_data(file: &rapidvc::ast::File) -> Vec<bool> {
+    file.modules[0]
+        .items
+        .iter()
+        .filter(|i| matches!(i, ModuleItem::Data(_) | ModuleItem::PackedData(_)))
+        .map(|i| matches!(i, ModuleItem::PackedData(_)))
+        .collect()
+}
+
+/// A module data declaration of names and literals is kept as its text; one with array
+/// dimensions, an expression, a placeholder or a diagnostic is not; without the option none
+/// is. Either way the front end and the interpreters see the same.
+#[test]
+fn simple_data_declarations_are_packed() {
+    let text = "MODULE M\n  VAR num n := 1;\n  LOCAL PERS robtarget p := [[1,2,3],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n  TASK PERS string s := \"a\"\"b\";\n  CONST num m := -2.5;\n  VAR pos q;\n  VAR num k{2} := [1, 2];\n  VAR num e := n + 1;\n  VAR num big := 1E39;\n  VAR num <ID> := 1;\n  CONST bool t := TRUE;\n  VAR num d := n;\n  PROC main()\n    TPWrite s \\Num:=n + m + e + d + k{1} + big;\n  ENDPROC\nENDMODULE\n";
+    let (packed, file) = outcome(text, true);
+    assert_eq!(
+        packed_data(&file),
+        [
+            true, true, true, true, true, false, false, false, false, true, true
+        ]
+    );
+    let (plain, file) = outcome(text, false);
+    assert!(packed_data(&file).iter().all(|p| !p));
+    let diff = difference(&packed, &plain);
+    assert!(diff.is_none(), "{}", diff.unwrap_or_default());
+}
+
 /// The calls of the routine `main` of a parsed file.
 fn main_calls(file: &rapidvc::ast::File) -> Vec<&CallArgs> {
     file.modules[0]
@@ -302,17 +405,18 @@ fn main_calls(file: &rapidvc::ast::File) -> Vec<&CallArgs> {
         .collect()
 }
 
-/// A call whose arguments are names and literals is packed; one without arguments, with an
-/// expression, or with a diagnostic in an argument is not; without the option nothing is.
+/// A call whose arguments are names, literals and calls of functions with such arguments is
+/// packed; one without arguments, with an expression, or with a diagnostic in an argument is
+/// not; without the option nothing is.
 #[test]
 fn simple_calls_are_packed() {
-    let text = "MODULE M\n  PROC main()\n    MoveL p10, v500, z10, tool0\\WObj:=wobj0;\n    TPWrite \"a\"\"b\" \\Num:=-1.5E3;\n    Stop;\n    MoveL Offs(p10, 0, 0, 5), v500, fine, tool0;\n    TPWrite \"bad\\q\";\n    WaitTime 1E39;\n  ENDPROC\nENDMODULE\n";
+    let text = "MODULE M\n  PROC main()\n    MoveL p10, v500, z10, tool0\\WObj:=wobj0;\n    TPWrite \"a\"\"b\" \\Num:=-1.5E3;\n    Stop;\n    MoveL Offs(p10, 0, 0, 5), v500, fine, tool0;\n    TPWrite \"bad\\q\";\n    WaitTime 1E39;\n    MoveL Offs(p10, 0, 0, n + 5), v500, fine, tool0;\n    MoveL Offs (RelTool(p10, 0, -1, 2 \\Rz:=90), 0,0,5)\\Conc, v500, fine, tool0;\n  ENDPROC\nENDMODULE\n";
     let (packed, file) = outcome(text, true);
     let kinds: Vec<bool> = main_calls(&file)
         .iter()
         .map(|a| matches!(a, CallArgs::Packed(_)))
         .collect();
-    assert_eq!(kinds, [true, true, false, false, false, false]);
+    assert_eq!(kinds, [true, true, false, true, false, false, false, true]);
     let (plain, file) = outcome(text, false);
     assert!(
         main_calls(&file)
@@ -329,6 +433,15 @@ proptest! {
     /// Packing call arguments changes nothing the front end or the interpreters see.
     #[test]
     fn packing_calls_changes_nothing(text in calls()) {
+        let (packed, _) = outcome(&text, true);
+        let (plain, _) = outcome(&text, false);
+        let diff = difference(&packed, &plain);
+        prop_assert!(diff.is_none(), "{}\n{}", text, diff.unwrap_or_default());
+    }
+
+    /// Packing data declarations changes nothing the front end or the interpreters see.
+    #[test]
+    fn packing_data_changes_nothing(text in datas()) {
         let (packed, _) = outcome(&text, true);
         let (plain, _) = outcome(&text, false);
         let diff = difference(&packed, &plain);

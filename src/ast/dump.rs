@@ -13,6 +13,7 @@ impl File {
             out: String::new(),
             indent: 0,
             text: &self.text,
+            source: self.span.source,
         };
         for m in &self.modules {
             d.module(m);
@@ -34,8 +35,10 @@ impl Expr {
 struct Dumper<'t> {
     out: String,
     indent: usize,
-    /// The file's text (packed aggregates and call arguments are read from it).
+    /// The file's text (packed aggregates, data and call arguments are read from it).
     text: &'t str,
+    /// The file.
+    source: SourceId,
 }
 
 fn span(s: Span) -> String {
@@ -96,6 +99,7 @@ impl Dumper<'_> {
                         span(a.span)
                     )),
                     ModuleItem::Data(x) => d.data(x),
+                    ModuleItem::PackedData(x) => d.data(&x.unpack(d.source, t)),
                     ModuleItem::Routine(r) => d.routine(r),
                     ModuleItem::Placeholder(p) => {
                         d.line(&format!("{} {}", p.node.as_str(), span(p.span)))

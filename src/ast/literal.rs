@@ -3,7 +3,7 @@
 //! packed aggregate ([`super::ExprKind::PackedAggregate`]) is unpacked with the same code, so
 //! its tree is the one the parser would have built.
 
-use super::{Arg, ArgKind, EcoString, Expr, ExprKind, UnaryOp};
+use super::{Arg, ArgKind, DataDecl, EcoString, Expr, ExprKind, Storage, UnaryOp};
 use crate::source::{SourceId, Span, Spanned};
 
 /// The largest finite `num` (IEEE-754 single precision).
@@ -300,12 +300,11 @@ impl LitReader<'_> {
 }
 
 /// The arguments of a procedure call statement from the text `t` that follows its name up to
-/// and including the `;` (written at byte `start` of `file`), when every argument is a name or
-/// a plain literal: positional (`p10`, `-1.5`, `"text"`, `TRUE`) or optional (`\Switch`,
-/// `\Name:=value`). `None` for anything else (the parser then keeps the tree it built, see
-/// [`super::CallArgs`]).
+/// and including the `;` (written at byte `start` of `file`), when every argument is a name, a
+/// plain literal or a call of a function with such arguments: positional (`p10`, `-1.5`,
+/// `"text"`, `TRUE`, `Offs(p10, 0, 0, 50)`) or optional (`\Switch`, `\Name:=value`). `None`
+/// for anything else (the parser then keeps the tree it built, see [`super::CallArgs`]).
 pub(crate) fn read_call_args(file: SourceId, t: &str, start: usize) -> Option<Vec<Arg>> {
-    let b = t.as_bytes();
     let mut scratch = Vec::new();
     let mut read = LitReader {
         file,
@@ -314,27 +313,49 @@ pub(crate) fn read_call_args(file: SourceId, t: &str, start: usize) -> Option<Ve
         scratch: &mut scratch,
         errors: Vec::new(),
     };
+    let mut pos = 0;
+    let out = read_args(&mut read, t, start, &mut pos, b';', 0)?;
+    (pos == t.len() && read.errors.is_empty()).then_some(out)
+}
+
+/// The deepest nesting of function calls [`read_call_args`] reads (deeper ones are left to
+/// the parser's tree).
+const MAX_CALL_DEPTH: usize = 4;
+
+/// The arguments at `t[*pos..]` up to the byte `close` (`;` after a procedure call's
+/// arguments, `)` after a function call's), `depth` function calls deep; `pos` ends after
+/// `close`.
+fn read_args(
+    read: &mut LitReader<'_>,
+    t: &str,
+    start: usize,
+    pos: &mut usize,
+    close: u8,
+    depth: usize,
+) -> Option<Vec<Arg>> {
+    let b = t.as_bytes();
+    let file = read.file;
     let span = |a: usize, z: usize| Span::new(file, start + a, start + z);
     let mut out = Vec::new();
-    let mut pos = 0;
-    skip_trivia(t, &mut pos);
-    if b.get(pos) == Some(&b';') {
-        return (pos + 1 == t.len()).then_some(out);
+    skip_trivia(t, pos);
+    if b.get(*pos) == Some(&close) {
+        *pos += 1;
+        return Some(out);
     }
     loop {
-        skip_trivia(t, &mut pos);
-        let at = pos;
-        if b.get(pos) == Some(&b'\\') {
-            pos += 1;
-            skip_trivia(t, &mut pos);
-            let name_at = pos;
-            let name = word(t, &mut pos)?;
-            let name = Spanned::new(EcoString::from(name), span(name_at, pos));
-            skip_trivia(t, &mut pos);
-            let value = if t[pos..].starts_with(":=") {
-                pos += 2;
-                skip_trivia(t, &mut pos);
-                Some(Box::new(call_value(&mut read, t, start, &mut pos)?))
+        skip_trivia(t, pos);
+        let at = *pos;
+        if b.get(*pos) == Some(&b'\\') {
+            *pos += 1;
+            skip_trivia(t, pos);
+            let name_at = *pos;
+            let name = word(t, pos)?;
+            let name = Spanned::new(EcoString::from(name), span(name_at, *pos));
+            skip_trivia(t, pos);
+            let value = if t[*pos..].starts_with(":=") {
+                *pos += 2;
+                skip_trivia(t, pos);
+                Some(Box::new(call_value(read, t, start, pos, depth)?))
             } else {
                 None
             };
@@ -344,21 +365,144 @@ pub(crate) fn read_call_args(file: SourceId, t: &str, start: usize) -> Option<Ve
                 span: Span::new(file, start + at, end as usize),
             });
         } else {
-            let e = call_value(&mut read, t, start, &mut pos)?;
+            let e = call_value(read, t, start, pos, depth)?;
             out.push(Arg {
                 span: e.span,
                 kind: ArgKind::Positional(e),
             });
         }
-        skip_trivia(t, &mut pos);
-        match b.get(pos) {
-            Some(b',') => pos += 1,
+        skip_trivia(t, pos);
+        match b.get(*pos) {
+            Some(b',') => *pos += 1,
             Some(b'\\') => {}
-            Some(b';') if pos + 1 == t.len() => break,
+            Some(&c) if c == close => {
+                *pos += 1;
+                break;
+            }
             _ => return None,
         }
     }
-    read.errors.is_empty().then_some(out)
+    Some(out)
+}
+
+/// The module data declaration `t` (its whole text, from its first keyword to its `;`,
+/// written at byte `start` of `file`) when it has the simplest shape: `[LOCAL] [TASK]
+/// VAR|PERS|CONST type name [:= value];` without array dimensions, the value a name, a plain
+/// literal or a literal aggregate (kept packed, [`ExprKind::PackedAggregate`]). `None` for
+/// anything else (the parser then keeps the tree it built, see [`super::PackedData`]).
+///
+/// `aggregate_end`, when known, is where a literal aggregate value ends in `t` (the parser has
+/// just read it: it is not read again).
+pub(crate) fn read_data_decl(
+    file: SourceId,
+    t: &str,
+    start: usize,
+    aggregate_end: Option<usize>,
+) -> Option<DataDecl> {
+    let span = |a: usize, z: usize| Span::new(file, start + a, start + z);
+    let mut pos = 0;
+    let head = read_data_head(t, &mut pos)?;
+    let ident = |(a, z): (usize, usize)| Spanned::new(EcoString::from(&t[a..z]), span(a, z));
+    let (local, task, storage) = (head.local, head.task, head.storage);
+    let (ty, name) = (ident(head.ty), ident(head.name));
+    skip_trivia(t, &mut pos);
+    let init = if t[pos..].starts_with(":=") {
+        pos += 2;
+        skip_trivia(t, &mut pos);
+        let mut scratch = Vec::new();
+        let mut read = LitReader {
+            file,
+            build: false,
+            max_depth: usize::MAX,
+            scratch: &mut scratch,
+            errors: Vec::new(),
+        };
+        let value = if t.as_bytes().get(pos) == Some(&b'[') {
+            let at = pos;
+            match aggregate_end {
+                Some(end) if end > pos && end <= t.len() => pos = end,
+                _ => {
+                    read.aggregate(t, start, &mut pos, 0)?;
+                }
+            }
+            Expr {
+                kind: ExprKind::PackedAggregate(super::PackedAggregate::new()),
+                span: span(at, pos),
+            }
+        } else {
+            read.build = true;
+            call_value(&mut read, t, start, &mut pos, MAX_CALL_DEPTH)?
+        };
+        if !read.errors.is_empty() {
+            return None;
+        }
+        skip_trivia(t, &mut pos);
+        Some(value)
+    } else {
+        None
+    };
+    (t.as_bytes().get(pos) == Some(&b';') && pos + 1 == t.len()).then(|| DataDecl {
+        local,
+        task,
+        storage,
+        ty,
+        name,
+        dims: Vec::new(),
+        init,
+        span: span(0, t.len()),
+    })
+}
+
+/// The words before the value of a data declaration (see [`read_data_decl`]).
+pub(crate) struct DataHead {
+    /// `LOCAL` was written.
+    pub(crate) local: bool,
+    /// `TASK` was written.
+    pub(crate) task: bool,
+    /// `VAR`, `PERS` or `CONST`.
+    pub(crate) storage: Storage,
+    /// Where the type name is in the text.
+    pub(crate) ty: (usize, usize),
+    /// Where the data name is in the text.
+    pub(crate) name: (usize, usize),
+}
+
+/// The keywords, type and name at the start of the data declaration `t`; `pos` ends after
+/// the name.
+pub(crate) fn read_data_head(t: &str, pos: &mut usize) -> Option<DataHead> {
+    let (mut local, mut task) = (false, false);
+    let storage = loop {
+        skip_trivia(t, pos);
+        let w = word(t, pos)?;
+        if w.eq_ignore_ascii_case("LOCAL") && !local && !task {
+            local = true;
+        } else if w.eq_ignore_ascii_case("TASK") && !task {
+            task = true;
+        } else if w.eq_ignore_ascii_case("VAR") {
+            break Storage::Var;
+        } else if w.eq_ignore_ascii_case("PERS") {
+            break Storage::Pers;
+        } else if w.eq_ignore_ascii_case("CONST") {
+            break Storage::Const;
+        } else {
+            return None;
+        }
+    };
+    let mut ident = || {
+        skip_trivia(t, pos);
+        let at = *pos;
+        word(t, pos)?;
+        Some((at, *pos))
+    };
+    let ty = ident()?;
+    let name = ident()?;
+    Some(DataHead {
+        local,
+        task,
+        storage,
+        ty,
+        name,
+    })
 }
 
 /// A name (letters, digits, `_`, starting with a letter) at `t[*pos..]`; `pos` ends after it.
@@ -374,14 +518,36 @@ fn word<'t>(t: &'t str, pos: &mut usize) -> Option<&'t str> {
     rest.get(..n)
 }
 
-/// One argument value of [`read_call_args`]: a name, `TRUE`/`FALSE`, a number (with a sign)
-/// or a string.
-fn call_value(read: &mut LitReader<'_>, t: &str, start: usize, pos: &mut usize) -> Option<Expr> {
+/// One argument value of [`read_call_args`]: a name, `TRUE`/`FALSE`, a number (with a sign),
+/// a string, or a call of a function with such arguments (`depth` calls deep).
+fn call_value(
+    read: &mut LitReader<'_>,
+    t: &str,
+    start: usize,
+    pos: &mut usize,
+    depth: usize,
+) -> Option<Expr> {
     let at = *pos;
     match *t.as_bytes().get(at)? {
         c if c.is_ascii_alphabetic() => {
             let w = word(t, pos)?;
             let span = Span::new(read.file, start + at, start + *pos);
+            let mut open = *pos;
+            skip_trivia(t, &mut open);
+            if t.as_bytes().get(open) == Some(&b'(') {
+                if depth >= MAX_CALL_DEPTH {
+                    return None;
+                }
+                *pos = open + 1;
+                let args = read_args(read, t, start, pos, b')', depth + 1)?;
+                return Some(Expr {
+                    kind: ExprKind::Call {
+                        name: Box::new(Spanned::new(EcoString::from(w), span)),
+                        args: args.into_boxed_slice(),
+                    },
+                    span: Span::new(read.file, start + at, start + *pos),
+                });
+            }
             let kind = if w.eq_ignore_ascii_case("TRUE") {
                 ExprKind::Bool(true)
             } else if w.eq_ignore_ascii_case("FALSE") {

@@ -37,13 +37,13 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
         for (i, item) in m.items.iter().enumerate() {
             // The module-level duplicate first, then what is inside the item, as one thread
             // reports them.
-            if let Some(name) = item_name(item) {
+            if let Some(name) = item_name(item, source, &file.text) {
                 let mut c = Checker {
                     diags: &mut *diags,
                     file: source,
                     text: &file.text,
                 };
-                names.add(&mut c, name, scope);
+                names.add_at(&mut c, name, scope);
             }
             if parallel {
                 if let Some((_, d)) = inside.next_if(|(at, _)| *at == i) {
@@ -61,13 +61,20 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
     }
 }
 
-/// The name an item declares in its module's scope.
-fn item_name(item: &ModuleItem) -> Option<&Ident> {
+/// The name an item declares in its module's scope, and where (`text` is the file's, where a
+/// packed declaration's name is read).
+fn item_name<'a>(
+    item: &'a ModuleItem,
+    source: crate::source::SourceId,
+    text: &'a str,
+) -> Option<(&'a str, Span)> {
+    let ident = |id: &'a Ident| (id.node.as_str(), id.span);
     match item {
-        ModuleItem::Record(r) => Some(&r.name),
-        ModuleItem::Alias(a) => Some(&a.name),
-        ModuleItem::Data(d) => Some(&d.name),
-        ModuleItem::Routine(r) => Some(&r.name),
+        ModuleItem::Record(r) => Some(ident(&r.name)),
+        ModuleItem::Alias(a) => Some(ident(&a.name)),
+        ModuleItem::Data(d) => Some(ident(&d.name)),
+        ModuleItem::PackedData(d) => Some(d.name(source, text)),
+        ModuleItem::Routine(r) => Some(ident(&r.name)),
         ModuleItem::Placeholder(_) => None,
     }
 }
@@ -168,18 +175,23 @@ impl<'a> Names<'a> {
     }
 
     fn add(&mut self, c: &mut Checker<'_>, name: &'a Ident, scope: Scope<'_>) {
-        if name.node.is_empty() || name.node.starts_with('<') {
+        self.add_at(c, (&name.node, name.span), scope);
+    }
+
+    /// [`Names::add`] for a name and where it is written.
+    fn add_at(&mut self, c: &mut Checker<'_>, (name, span): (&'a str, Span), scope: Scope<'_>) {
+        if name.is_empty() || name.starts_with('<') {
             return;
         }
-        match self.first.entry(Folded(&name.node)) {
+        match self.first.entry(Folded(name)) {
             Entry::Occupied(first) => c.push(ParseErrorKind::DuplicateName {
-                span: name.span,
+                span,
                 first: *first.get(),
-                name: name.node.to_string(),
+                name: name.to_string(),
                 scope: scope.describe(),
             }),
             Entry::Vacant(v) => {
-                v.insert(name.span);
+                v.insert(span);
             }
         }
     }
@@ -205,6 +217,8 @@ impl Checker<'_> {
                 self.ident(&a.base);
             }
             ModuleItem::Data(d) => self.data(d),
+            // (Names and literals only: nothing in it to check.)
+            ModuleItem::PackedData(_) => {}
             ModuleItem::Routine(r) => self.routine(r),
             ModuleItem::Placeholder(p) => self.placeholder(p.node, p.span),
         }

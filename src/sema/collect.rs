@@ -201,7 +201,7 @@ impl<'a> Checker<'a> {
             .or_default();
         *list = list.iter().copied().chain([id]).collect();
         self.globals.push(g);
-        self.global_decls.push(Vec::new());
+        self.global_decls.push(None);
         id
     }
 
@@ -274,7 +274,7 @@ impl<'a> Checker<'a> {
             .module_asts
             .iter()
             .flat_map(|m| &m.items)
-            .filter(|item| matches!(item, ModuleItem::Data(_)))
+            .filter(|item| matches!(item, ModuleItem::Data(_) | ModuleItem::PackedData(_)))
             .count();
         self.globals.reserve(data);
         self.global_decls.reserve(data);
@@ -284,23 +284,24 @@ impl<'a> Checker<'a> {
             let mid = ModuleId(mi as u32);
             self.cur_module = mid;
             for item in &m.items {
-                if let ModuleItem::Data(d) = item {
-                    self.collect_global(mid, d);
+                if let Some(d) = self.data_decl(mid, item) {
+                    self.collect_global(mid, item, &d);
                 }
             }
         }
         self.fill_records();
-        // Array sizes may name constants declared anywhere: compute them now.
+        // Array sizes may name constants declared anywhere: compute them now. (A packed
+        // declaration has none.)
         for gi in 0..self.globals.len() {
-            let decls = self.global_decls[gi].clone();
-            if let Some((m, d)) = decls.first() {
-                self.cur_module = *m;
+            if let Some((m, ModuleItem::Data(d))) = self.global_decls[gi] {
+                self.cur_module = m;
                 self.globals[gi].dims = self.const_dims(&d.dims);
             }
         }
     }
 
-    fn collect_global(&mut self, mid: ModuleId, d: &'a ast::DataDecl) {
+    /// The module data declaration `d`, the data item `item` of module `mid`.
+    fn collect_global(&mut self, mid: ModuleId, item: &'a ModuleItem, d: &ast::DataDecl) {
         let Some(base) = self.resolve_type(&d.ty) else {
             return;
         };
@@ -382,7 +383,10 @@ impl<'a> Checker<'a> {
                         d.ty.span,
                     );
                 } else {
-                    self.global_decls[gid.0 as usize].push((mid, d));
+                    self.shared_decls
+                        .entry(gid.0)
+                        .or_default()
+                        .push((mid, item));
                 }
                 return;
             }
@@ -408,11 +412,20 @@ impl<'a> Checker<'a> {
             span: d.span,
         });
         // (One declaration, in a list of exactly one.)
-        self.global_decls[gid.0 as usize] = vec![(mid, d)];
+        self.global_decls[gid.0 as usize] = Some((mid, item));
     }
 
     /// Routine headers: parameters, slots, return types.
     pub(super) fn collect_routines(&mut self) {
+        // (Sized up front: a list grown by doubling holds up to twice what it needs.)
+        let count = self
+            .module_asts
+            .iter()
+            .flat_map(|m| &m.items)
+            .filter(|item| matches!(item, ModuleItem::Routine(_)))
+            .count();
+        self.routines.reserve(count);
+        self.routine_asts.reserve(count);
         for mi in 0..self.module_asts.len() {
             let m = self.module_asts[mi];
             let mid = ModuleId(mi as u32);
@@ -535,6 +548,8 @@ impl<'a> Checker<'a> {
         }
         let rid = RoutineId(self.routines.len() as u32);
         self.routine_syms.entry(key).or_default().push(rid);
+        // (Exactly their length: a list grown by pushing holds four at least.)
+        params.shrink_to_fit();
         self.routines.push(Routine {
             name: r.name.node.to_string(),
             module: mid,

@@ -108,7 +108,8 @@ impl Checker<'_> {
                     Some(ConstState::InProgress) => return None,
                     None => {}
                 }
-                let (m, d) = *self.global_decls[gid.0 as usize].first()?;
+                let (m, item) = self.global_decls.get(gid.0 as usize).copied().flatten()?;
+                let d = self.data_decl(m, item)?;
                 let init = d.init.as_ref()?;
                 self.const_state.insert(gid.0, ConstState::InProgress);
                 let saved = (self.cur_module, self.rcx.take());

@@ -5,6 +5,7 @@
 
 use super::Checker;
 use super::error::SemaErrorKind as K;
+use crate::ast;
 use crate::ir::limits::{MAX_DECL_VALUES, MAX_TASK_VALUES};
 use crate::ir::{GlobalOrigin, LocalDecl, Ty};
 use crate::source::Span;
@@ -38,10 +39,13 @@ impl Checker<'_> {
                 continue;
             }
             let (name, ty, dims) = (g.name.clone(), g.ty, g.dims.clone());
-            let span = self.global_decls[gi]
-                .first()
-                .map(|(_, d)| d.span)
-                .unwrap_or(g.span);
+            let span = match self.global_decls[gi] {
+                Some((_, ast::ModuleItem::Data(d))) => d.span,
+                Some((m, ast::ModuleItem::PackedData(d))) => {
+                    d.span(self.modules[m.0 as usize].source)
+                }
+                _ => g.span,
+            };
             let values = self.declared_values(&name, ty, &dims, span);
             if values > MAX_DECL_VALUES {
                 // Reported on its own; counting it would only repeat that.

@@ -173,7 +173,9 @@ impl Checker<'_> {
             return NameRes::Unknown;
         };
         let g = &self.globals[gid.0 as usize];
-        if matches!(g.origin, GlobalOrigin::Module(_)) {
+        // (Only a global initialiser's dependencies are wanted: outside one, the list would
+        // only grow with every name of every routine.)
+        if self.rcx.is_none() && matches!(g.origin, GlobalOrigin::Module(_)) {
             self.deps.push(gid);
         }
         let readonly = matches!(g.origin, GlobalOrigin::Module(m) if self.is_stdlib(m));

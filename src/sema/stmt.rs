@@ -15,8 +15,12 @@ impl<'a> Checker<'a> {
         self.init_deps = vec![Vec::new(); self.globals.len()];
         self.has_init = vec![false; self.globals.len()];
         for gi in 0..self.globals.len() {
-            let decls = self.global_decls[gi].clone();
-            let Some(&(m, d)) = decls.iter().find(|(_, d)| d.init.is_some()) else {
+            let decls = self.decls_of(gi);
+            let Some((m, d)) = decls.iter().find_map(|&(m, item)| {
+                self.data_decl(m, item)
+                    .filter(|d| d.init.is_some())
+                    .map(|d| (m, d))
+            }) else {
                 continue;
             };
             let Some(init) = &d.init else {
@@ -33,7 +37,7 @@ impl<'a> Checker<'a> {
                 .and_then(|(x, xt)| self.coerce(x, xt, ty, &ctx, init.span));
             self.has_init[gi] = v.is_some();
             if self.keep_code {
-                self.globals[gi].init = v;
+                self.globals[gi].init = v.map(Box::new);
             }
             self.init_deps[gi] = std::mem::take(&mut self.deps);
         }
@@ -173,7 +177,8 @@ impl<'a> Checker<'a> {
     }
 
     fn routine_data(&mut self, data: &'a [ast::DataDecl]) -> Vec<LocalDecl> {
-        let mut out = Vec::new();
+        // (Exactly their number: the routine keeps them.)
+        let mut out = Vec::with_capacity(data.len());
         for d in data {
             if d.storage == Storage::Pers {
                 self.err(

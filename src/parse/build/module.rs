@@ -3,7 +3,7 @@
 
 use super::expr::placeholder;
 use super::{Builder, ModuleUnderConstruction};
-use crate::ast::{Ident, Module, ModuleAttr, ModuleItem};
+use crate::ast::{Ident, Module, ModuleAttr, ModuleItem, PackedData};
 use crate::parse::grammar::{Pair, Rule};
 use crate::parse::recover::Region;
 use crate::source::Spanned;
@@ -69,7 +69,20 @@ impl<'t> Builder<'t, '_> {
         let built = match item.as_rule() {
             Rule::record_decl => self.record(item).map(|r| ModuleItem::Record(Box::new(r))),
             Rule::alias_decl => self.alias(item).map(|a| ModuleItem::Alias(Box::new(a))),
-            Rule::data_decl => self.data_decl(item).map(|d| ModuleItem::Data(Box::new(d))),
+            Rule::data_decl => {
+                let errors = self.errors;
+                self.data_decl(item).map(|d| {
+                    // (Kept as its text when it reads back as built; see `PackedData`.)
+                    if self.pack
+                        && self.errors == errors
+                        && let Some(p) = PackedData::pack(self.file, self.text, &d)
+                    {
+                        ModuleItem::PackedData(p)
+                    } else {
+                        ModuleItem::Data(Box::new(d))
+                    }
+                })
+            }
             Rule::routine => self.routine(item).map(|r| ModuleItem::Routine(Box::new(r))),
             Rule::item_placeholder => item.into_inner().next().map(|ph| {
                 ModuleItem::Placeholder(Spanned::new(placeholder(self.text_of(&ph)), span))

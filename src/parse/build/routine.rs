@@ -133,6 +133,16 @@ impl Builder<'_, '_> {
             }
         }
         let (kind, name, params, head_span, opener) = head?;
+        // (Lists of exactly their length: a large module holds many routines, and the body
+        // was sized for every part of the routine.)
+        data.shrink_to_fit();
+        body.shrink_to_fit();
+        for list in [&mut backward, &mut undo].into_iter().flatten() {
+            list.shrink_to_fit();
+        }
+        if let Some(h) = error.as_mut() {
+            h.body.shrink_to_fit();
+        }
         if let Some(end) = end {
             let expected = match kind {
                 RoutineKind::Proc => "ENDPROC",
@@ -261,11 +271,14 @@ impl Builder<'_, '_> {
                     a.optional = true;
                 }
             }
+            // (Exactly their length: a list grown by pushing holds four at least.)
+            alternatives.shrink_to_fit();
             groups.push(ParamGroup {
                 alternatives,
                 span: gspan,
             });
         }
+        groups.shrink_to_fit();
         groups
     }
 

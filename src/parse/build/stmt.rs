@@ -287,6 +287,9 @@ impl Builder<'_, '_> {
                             _ => self.stmt_item(c, &mut body),
                         }
                     }
+                    // (Exactly their length: a list grown by pushing holds four at least.)
+                    values.shrink_to_fit();
+                    body.shrink_to_fit();
                     cases.push(TestCase {
                         values,
                         body,
