@@ -740,3 +740,49 @@ fn the_time_limit_note_knows_about_a_live_sensor() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--cycles forever` runs as a controller in continuous mode: the entry routine again after
+/// each cycle (ExitCycle included), until EXIT, an error or a limit ends it.
+#[test]
+fn cycles_forever_runs_until_the_program_ends_it() {
+    let dir = temp_dir("forever");
+    std::fs::write(
+        dir.join("loop.mod"),
+        "MODULE loop\n  PERS num n := 0;\n  PROC main()\n    Incr n;\n    TPWrite \"cycle \" \\Num:=n;\n    IF n = 3 ExitCycle;\n    IF n = 5 EXIT;\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let ended = run_in(&dir, &["run", "loop.mod", "--cycles", "forever"]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(
+        ended.stdout.lines().collect::<Vec<_>>(),
+        ["cycle 1", "cycle 2", "cycle 3", "cycle 4", "cycle 5"]
+    );
+    assert!(
+        ended.stderr.contains("program ended by EXIT"),
+        "{}",
+        ended.stderr
+    );
+    // Without an end of its own, a limit ends it.
+    std::fs::write(dir.join("counter.mod"), COUNTER).unwrap();
+    let ended = run_in(
+        &dir,
+        &[
+            "run",
+            "counter.mod",
+            "--cycles",
+            "forever",
+            "--max-steps",
+            "50",
+        ],
+    );
+    assert_ne!(ended.code, Some(0));
+    assert!(ended.stdout.lines().count() > 5, "{}", ended.stdout);
+    let ended = run_in(&dir, &["run", "counter.mod", "--cycles", "often"]);
+    assert_eq!(ended.code, Some(2));
+    assert!(
+        ended.stderr.contains("`often` is not a number of cycles"),
+        "{}",
+        ended.stderr
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

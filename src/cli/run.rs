@@ -82,9 +82,11 @@ pub struct RunArgs {
     /// configured signal, its new value; `#` starts a comment line).
     #[arg(long, value_name = "FILE")]
     pub signal_script: Option<PathBuf>,
-    /// Run the entry routine this many times (at least 1); `ExitCycle` ends a cycle early.
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
-    pub cycles: u32,
+    /// Run the entry routine this many times (at least 1), or `forever` (continuous mode, as
+    /// a controller runs: until Ctrl-C, EXIT, an error, --max-time or --max-steps);
+    /// `ExitCycle` ends a cycle early.
+    #[arg(long, value_name = "N", default_value = "1", value_parser = parse_cycles)]
+    pub cycles: Cycles,
     /// Robot model (see `rapidvc robots`).
     #[arg(long, value_name = "NAME", default_value = "IRB 2600-12/1.85")]
     pub robot: RobotArg,
@@ -525,10 +527,40 @@ fn read_pers(path: &Path) -> Result<Option<StoredPers>, String> {
     }))
 }
 
+/// How many times the entry routine runs (`--cycles`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cycles(Option<u32>);
+
+impl Cycles {
+    /// Once.
+    pub const ONCE: Cycles = Cycles(Some(1));
+
+    /// True while cycle `done` + 1 is to run.
+    pub fn more(self, done: u32) -> bool {
+        self.0.is_none_or(|n| done < n)
+    }
+}
+
+/// `--cycles`: a count of at least 1, or `forever`.
+fn parse_cycles(s: &str) -> Result<Cycles, String> {
+    if s.trim().eq_ignore_ascii_case("forever") {
+        return Ok(Cycles(None));
+    }
+    match s.trim().parse::<u32>() {
+        Ok(n) if n >= 1 => Ok(Cycles(Some(n))),
+        _ => Err(format!(
+            "`{s}` is not a number of cycles: 1 to {} or `forever`",
+            u32::MAX
+        )),
+    }
+}
+
 /// Run the entry routine `--cycles` times. Returns the exit code and whether the robot may
 /// finish its queued moves (the program ended normally) or must stop where it is.
 fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode, bool) {
-    for _ in 0..args.cycles {
+    let mut done = 0u32;
+    while args.cycles.more(done) {
+        done = done.saturating_add(1);
         match it.run(&args.entry) {
             Ok(Outcome::Completed | Outcome::ExitCycle) => {}
             Ok(Outcome::Exited) => {
@@ -555,7 +587,6 @@ fn run_cycles(args: &RunArgs, it: &mut Interp, sources: &SourceMap) -> (ExitCode
     (ExitCode::SUCCESS, true)
 }
 
-/// The view of this run (`--view`, `--view-live`), showing the program's own modules.
 /// The view of a run of `progs` (one per task; the page shows their files).
 pub(super) fn start_view<'a>(
     args: &RunArgs,

@@ -65,7 +65,7 @@ pub fn run(mut args: ServeArgs) -> ExitCode {
     };
     let _ = signal_hook::flag::register(signal_hook::consts::SIGTERM, Arc::clone(&shutdown));
     let a = &mut args.run;
-    if a.cycles != 1 {
+    if a.cycles != run::Cycles::ONCE {
         eprintln!("error: --cycles: `serve` runs the program once or forever as each start says");
         return ExitCode::from(2);
     }

@@ -297,7 +297,11 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         let entry = task.config.entry.clone();
         let name = task.config.name.clone();
         let normal = task.config.kind == crate::config::sys::TaskType::Normal;
-        let cycles = if normal { args.cycles } else { 1 };
+        let cycles = if normal {
+            args.cycles
+        } else {
+            super::Cycles::ONCE
+        };
         let operator = if Some(i) == motion || motion.is_none() && i == 0 {
             operator.take()
         } else {
@@ -482,7 +486,7 @@ struct Which<'a> {
     name: &'a str,
     entry: &'a str,
     /// How many times the entry routine runs.
-    cycles: u32,
+    cycles: super::Cycles,
     /// Several tasks run: messages name the task.
     labels: bool,
     /// A NORMAL task (its EXIT or Stop stops the other tasks).
@@ -509,7 +513,9 @@ fn run_task(
     } else {
         String::new()
     };
-    for _ in 0..cycles {
+    let mut done = 0u32;
+    while cycles.more(done) {
+        done = done.saturating_add(1);
         match it.run(entry) {
             Ok(Outcome::Completed | Outcome::ExitCycle) => {}
             Ok(Outcome::Exited) => {
