@@ -10,6 +10,7 @@ mod assign;
 mod call;
 mod cond;
 mod divk;
+mod fast;
 mod flow;
 mod natives;
 mod num;

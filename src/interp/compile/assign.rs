@@ -39,6 +39,15 @@ impl Sink {
         }
     }
 
+    /// The place written (none for `RETURN`).
+    fn place(&self) -> Option<&Place> {
+        match self {
+            Sink::Local(_, pl) | Sink::Global(_, pl) | Sink::Elem(_, pl) => Some(pl),
+            Sink::Place(pl) => Some(pl.ir()),
+            Sink::Return => None,
+        }
+    }
+
     /// Store `x` (not NaN). Whole locals and globals and 1-D array elements are written in
     /// place; anything else goes through [`Interp::store`].
     #[inline(always)]
@@ -123,6 +132,55 @@ fn finish<P: Put>(it: &mut Interp, c: &Code, sink: &P, x: f32, vs: Span) -> Exec
 
 /// A statement computing `value` into `sink`.
 pub(crate) fn num_into(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
+    if let Sink::Local(s, _) = sink
+        && let Some((k, add)) = local_step(cx, value, s)
+    {
+        let slow = num_into_general(cx, value, sink);
+        return match add {
+            true => step_local::<true>(s, k, slow),
+            false => step_local::<false>(s, k, slow),
+        };
+    }
+    let place = sink.place().cloned();
+    let general = num_into_general(cx, value, sink);
+    match place {
+        Some(pl) => super::fast::num_into(cx, &pl, value, general),
+        None => general,
+    }
+}
+
+/// `k` and whether it is added (else subtracted), when `value` is `x + k` or `x - k` of the
+/// local in `slot` itself and a constant (`pc := pc + 1`).
+fn local_step(cx: &Cx, value: &Expr, slot: u32) -> Option<(f32, bool)> {
+    let ExprKind::Binary(op @ (BinOp::NumAdd | BinOp::NumSub), a, b) = &value.kind else {
+        return None;
+    };
+    match (&a.kind, &b.kind) {
+        (ExprKind::Local(s), ExprKind::Num(k)) if *s == slot && cx.is_num(a) => {
+            Some((*k, *op == BinOp::NumAdd))
+        }
+        _ => None,
+    }
+}
+
+/// `x := x + k` (`ADD`) or `x := x - k` of a local: the slot touched once when it holds a
+/// `num` and the result is finite; anything else is `slow`, the statement's general form
+/// (nothing has been written before it runs).
+fn step_local<const ADD: bool>(s: u32, k: f32, slow: StmtFn) -> StmtFn {
+    Box::new(move |it, c| {
+        if let Some(Value::Num(x)) = it.stack.get_mut(it.bp + s as usize) {
+            let r = if ADD { *x + k } else { *x - k };
+            if r.is_finite() {
+                *x = r;
+                return Ok(());
+            }
+        }
+        slow(it, c)
+    })
+}
+
+/// [`num_into`] without the fused shapes.
+fn num_into_general(cx: &Cx, value: &Expr, sink: Sink) -> StmtFn {
     let vs = value.span;
     match &value.kind {
         ExprKind::Binary(op, a, b) if op.is_num_arith() => {

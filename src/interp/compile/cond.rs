@@ -2,6 +2,7 @@
 //! (both operands always evaluated), `NOT`, constants and `bool` locals; anything else runs
 //! on the tree-walking path.
 
+use super::fast::Pk;
 use super::num::{Src, opnd, typed_left, typed_right};
 use super::{BoolFn, Code, Cx};
 use crate::interp::Interp;
@@ -115,6 +116,21 @@ const GE: u8 = 3;
 const EQ: u8 = 4;
 const NE: u8 = 5;
 
+/// `$m!(OP)` for the `num` comparison operator `$op`, `$other` for any other operator.
+macro_rules! by_cmp {
+    ($op:expr, $m:ident, $other:expr) => {
+        match $op {
+            BinOp::NumLt => $m!(LT),
+            BinOp::NumLe => $m!(LE),
+            BinOp::NumGt => $m!(GT),
+            BinOp::NumGe => $m!(GE),
+            BinOp::NumEq => $m!(EQ),
+            BinOp::NumNe => $m!(NE),
+            _ => $other,
+        }
+    };
+}
+
 /// A `num` comparison `a OP b` (a failing operand raises its error at the operand's span).
 pub(crate) struct Cmp<A, B, const OP: u8> {
     a: A,
@@ -134,14 +150,7 @@ impl<A: Src, B: Src, const OP: u8> Cond for Cmp<A, B, OP> {
         if B::FALLIBLE && y.is_nan() {
             return Err(it.take_pending(self.sb));
         }
-        Ok(match OP {
-            LT => x < y,
-            LE => x <= y,
-            GT => x > y,
-            GE => x >= y,
-            EQ => x == y,
-            _ => x != y,
-        })
+        Ok(cmp::<OP>(x, y))
     }
 }
 
@@ -154,6 +163,61 @@ pub(crate) fn with_cond<W: WithCond>(cx: &Cx, e: &Expr, w: W) -> W::Out {
     let ExprKind::Binary(op, a, b) = &e.kind else {
         return w.with(cond(cx, e));
     };
+    if let (Some(pa), Some(pb)) = (Pk::of(cx, a), Pk::of(cx, b))
+        && (pa.is_elem() || pb.is_elem())
+    {
+        // An array element compared: read in place when it is a plain `num`, else the
+        // comparison's general form (compiled as below), which raises the errors.
+        macro_rules! fast {
+            ($op:expr) => {
+                w.with(FastCmp::<{ $op }> {
+                    a: pa,
+                    b: pb,
+                    general: with_cond_general(cx, e, Boxed),
+                })
+            };
+        }
+        return by_cmp!(op, fast, w.with(cond(cx, e)));
+    }
+    with_cond_general(cx, e, w)
+}
+
+/// A `num` comparison of operands read without side effects (see [`Pk`]), with the
+/// comparison's general form for when a value is not a plain `num`.
+struct FastCmp<const OP: u8> {
+    a: Pk,
+    b: Pk,
+    general: BoolFn,
+}
+
+impl<const OP: u8> Cond for FastCmp<OP> {
+    #[inline(always)]
+    fn test(&self, it: &mut Interp, c: &Code) -> Exec<bool> {
+        let (Some(x), Some(y)) = (self.a.get(it), self.b.get(it)) else {
+            return (self.general)(it, c);
+        };
+        Ok(cmp::<OP>(x, y))
+    }
+}
+
+/// `x OP y`.
+#[inline(always)]
+fn cmp<const OP: u8>(x: f32, y: f32) -> bool {
+    match OP {
+        LT => x < y,
+        LE => x <= y,
+        GT => x > y,
+        GE => x >= y,
+        EQ => x == y,
+        _ => x != y,
+    }
+}
+
+/// [`with_cond`] of a comparison without array elements.
+fn with_cond_general<W: WithCond>(cx: &Cx, e: &Expr, w: W) -> W::Out {
+    let ExprKind::Binary(op, a, b) = &e.kind else {
+        return w.with(cond(cx, e));
+    };
     let (sa, sb) = (a.span, b.span);
     macro_rules! cmp {
         ($op:expr) => {
@@ -161,13 +225,5 @@ pub(crate) fn with_cond<W: WithCond>(cx: &Cx, e: &Expr, w: W) -> W::Out {
                 .with(Cmp::<_, _, { $op }> { a, sa, b, sb })))
         };
     }
-    match op {
-        BinOp::NumLt => cmp!(LT),
-        BinOp::NumLe => cmp!(LE),
-        BinOp::NumGt => cmp!(GT),
-        BinOp::NumGe => cmp!(GE),
-        BinOp::NumEq => cmp!(EQ),
-        BinOp::NumNe => cmp!(NE),
-        _ => w.with(cond(cx, e)),
-    }
+    by_cmp!(op, cmp, w.with(cond(cx, e)))
 }

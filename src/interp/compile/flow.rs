@@ -177,26 +177,55 @@ impl Interp {
         })
     }
 
+    /// A compiled TEST: a jump table in a function of its own (small, so that the opcode
+    /// dispatch of a program does not pay for the other kinds of cases).
+    #[inline(always)]
     pub(crate) fn exec_ctest(&mut self, c: &Code, t: &CTest) -> Exec<()> {
+        match &t.cases {
+            Cases::Table(subject, lo, table) => self.exec_ctable(c, t, subject, *lo, table),
+            _ => self.exec_ctest_search(c, t),
+        }
+    }
+
+    /// A TEST whose case values are a table.
+    #[inline(never)]
+    fn exec_ctable(
+        &mut self,
+        c: &Code,
+        t: &CTest,
+        subject: &SpannedOpnd,
+        lo: i32,
+        table: &[u32],
+    ) -> Exec<()> {
+        let x = self.copnd(c, subject)?;
+        // Only an integer can equal a case value (NaN has been refused above), and the case
+        // values of a table are far inside `i32`: `x as i32` saturating at 2^31 finds no
+        // case, and the difference wraps to an index past the table when `x` is below `lo`.
+        let i = x as i32;
+        let k = match i as f32 == x {
+            true => table
+                .get(i.wrapping_sub(lo) as u32 as usize)
+                .copied()
+                .unwrap_or(NO_CASE),
+            false => NO_CASE,
+        };
+        match (t.bodies.get(k as usize), &t.default) {
+            (Some(b), _) | (None, Some(b)) => self.exec_cblock(c, b),
+            (None, None) => Ok(()),
+        }
+    }
+
+    /// A TEST whose cases are searched in order.
+    #[inline(never)]
+    fn exec_ctest_search(&mut self, c: &Code, t: &CTest) -> Exec<()> {
         let p = &*c.prog;
         let hit = match &t.cases {
             Cases::NumK(subject, vals) => {
                 let x = self.copnd(c, subject)?;
                 vals.iter().find(|(v, _)| *v == x).map(|(_, k)| *k)
             }
-            Cases::Table(subject, lo, table) => {
-                let x = self.copnd(c, subject)?;
-                // Only an integer can equal a case value (NaN has been refused above).
-                let i = (x as i64).checked_sub(i64::from(*lo)).unwrap_or(-1);
-                match usize::try_from(i) {
-                    Ok(i) if x.fract() == 0.0 => table
-                        .get(i)
-                        .copied()
-                        .filter(|&k| k != NO_CASE)
-                        .map(|k| k as usize),
-                    _ => None,
-                }
-            }
+            // Above.
+            Cases::Table(..) => None,
             Cases::Num(subject, cases) => {
                 let x = self.cnum(c, subject)?;
                 let mut hit = None;

@@ -110,6 +110,11 @@ impl CPlace {
         }
     }
 
+    /// The place as lowered.
+    pub(crate) fn ir(&self) -> &Place {
+        &self.ir
+    }
+
     /// Evaluate the indices into `buf`.
     #[inline(always)]
     fn indices(&self, it: &mut Interp, c: &Code, buf: &mut [i64; MAX_INDICES]) -> Exec<()> {
