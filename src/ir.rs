@@ -73,6 +73,8 @@ pub struct ModuleInfo {
     pub source: SourceId,
     /// Part of the embedded stdlib.
     pub stdlib: bool,
+    /// A system module: the stdlib's, or one declared `(SYSMODULE)` (a task's user.sys).
+    pub system: bool,
 }
 
 /// Where a global came from.

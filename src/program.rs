@@ -113,6 +113,54 @@ pub fn parse_stdlib(sources: &mut SourceMap, diags: &mut Diagnostics) -> Vec<ast
         .collect()
 }
 
+/// The controller's default USER system module (`reg1` … `reg5`, `clock1`), parsed into
+/// `sources`, when none of the `user` files has a module named USER: it joins the user's
+/// modules (its data are ordinary variables), as a task's own user.sys would. A name the
+/// user's modules declare themselves (`VAR num reg1;`, common in programs written without a
+/// controller's user.sys at hand) is theirs: the default module leaves it out.
+fn default_user_module(
+    user: &[ast::File],
+    sources: &mut SourceMap,
+    diags: &mut Diagnostics,
+) -> Option<ast::File> {
+    let (name, text) = stdlib::DEFAULT_USER;
+    let has_own = user
+        .iter()
+        .flat_map(|f| &f.modules)
+        .any(|m| m.name.node.eq_ignore_ascii_case("user"));
+    if has_own {
+        return None;
+    }
+    let declared: std::collections::HashSet<String> = user
+        .iter()
+        .flat_map(|f| {
+            f.modules.iter().flat_map(move |m| {
+                m.items
+                    .iter()
+                    .filter_map(move |item| item.data(f.span.source, &f.text))
+                    .map(|d| d.name.node.as_str().to_ascii_lowercase())
+            })
+        })
+        .collect();
+    // One declaration per line (`  VAR num reg1 := 0;`): the text itself leaves the user's
+    // names out, so that a module loaded at run time (which parses the program's texts
+    // again) sees the same module.
+    let text: String = text
+        .lines()
+        .filter(|line| {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            !(words.first() == Some(&"VAR")
+                && words.get(2).is_some_and(|n| {
+                    let n = n.trim_end_matches(';').to_ascii_lowercase();
+                    declared.contains(&n)
+                }))
+        })
+        .map(|line| format!("{line}\n"))
+        .collect();
+    let id = sources.add(name, text.clone());
+    Some(parse::parse_file(id, &text, diags))
+}
+
 /// Read the configuration (signals); problems go to `diags`.
 pub fn load_signals(
     dir: Option<&Path>,
@@ -252,8 +300,13 @@ fn sema_errors(
 ) -> Vec<sema::SemaError> {
     let mut diags = Diagnostics::new();
     let std_files = parse_stdlib(sources, &mut diags);
+    let default_user = default_user_module(user, sources, &mut diags);
     let env = sema::Env::from_signals(signals);
-    sema::check_only(&sema_inputs(&std_files, user), registry.signatures(), &env)
+    sema::check_only(
+        &sema_inputs(&std_files, default_user.as_ref(), user),
+        registry.signatures(),
+        &env,
+    )
 }
 
 /// Run the semantic pass over already parsed user files (plus the stdlib).
@@ -265,24 +318,33 @@ pub fn check(
     diags: &mut Diagnostics,
 ) -> Option<Program> {
     let std_files = parse_stdlib(sources, diags);
+    let default_user = default_user_module(user, sources, diags);
     let env = sema::Env::from_signals(signals);
     sema::analyze(
-        &sema_inputs(&std_files, user),
+        &sema_inputs(&std_files, default_user.as_ref(), user),
         registry.signatures(),
         &env,
         diags,
     )
 }
 
-/// The semantic pass's inputs: the stdlib's files, then the user's.
-fn sema_inputs<'a>(std_files: &'a [ast::File], user: &'a [ast::File]) -> Vec<sema::Input<'a>> {
+/// The semantic pass's inputs: the stdlib's files, the default USER module, then the
+/// user's files.
+fn sema_inputs<'a>(
+    std_files: &'a [ast::File],
+    default_user: Option<&'a ast::File>,
+    user: &'a [ast::File],
+) -> Vec<sema::Input<'a>> {
     let stdlib = std_files
         .iter()
         .map(|file| sema::Input { file, stdlib: true });
-    let user = user.iter().map(|file| sema::Input {
-        file,
-        stdlib: false,
-    });
+    let user = default_user
+        .into_iter()
+        .chain(user)
+        .map(|file| sema::Input {
+            file,
+            stdlib: false,
+        });
     stdlib.chain(user).collect()
 }
 

@@ -279,10 +279,15 @@ impl<'a> Checker<'a> {
     }
 
     fn add_module(&mut self, m: &'a ast::Module, stdlib: bool) {
+        let sysmodule = m
+            .attrs
+            .iter()
+            .any(|a| matches!(a.node, ast::ModuleAttr::SysModule));
         self.modules.push(ModuleInfo {
             name: m.name.node.to_string(),
             source: m.span.source,
             stdlib,
+            system: stdlib || sysmodule,
         });
         self.module_asts.push(m);
     }

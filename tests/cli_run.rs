@@ -786,3 +786,36 @@ fn cycles_forever_runs_until_the_program_ends_it() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A program with its own module USER (a backup's user.sys) uses that one, not rapidvc's
+/// default: what its user.sys leaves out does not exist, and what it declares is writable.
+#[test]
+fn a_programs_own_user_module_replaces_the_default_one() {
+    let dir = temp_dir("usermod");
+    std::fs::write(
+        dir.join("user.sys"),
+        "MODULE user (SYSMODULE)\n  VAR num reg1 := 5;\nENDMODULE\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("main.mod"),
+        "MODULE MainModule\n  PROC main()\n    Incr reg1;\n    TPWrite \"reg1 \" \\Num:=reg1;\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let ended = run_in(&dir, &["run", "."]);
+    assert_eq!(ended.code, Some(0), "{}", ended.stderr);
+    assert_eq!(ended.stdout, "reg1 6\n");
+    std::fs::write(
+        dir.join("main.mod"),
+        "MODULE MainModule\n  PROC main()\n    reg2 := 1;\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let ended = run_in(&dir, &["check", "."]);
+    assert_ne!(ended.code, Some(0));
+    assert!(
+        ended.stderr.contains("`reg2` is not declared"),
+        "{}",
+        ended.stderr
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

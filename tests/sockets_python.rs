@@ -210,3 +210,41 @@ fn ctrl_c_ends_a_socket_wait() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--max-time` ends a socket wait as it ends any other wait: the server waits up to 30 s
+/// in `SocketAccept` for a client that never comes, and a run limited to 2 s ends there
+/// with the time-limit error at that line.
+#[test]
+fn max_time_ends_a_socket_wait() {
+    let dir = temp_dir("maxtime");
+    let pers = dir.join("server.pers");
+    std::fs::write(&pers, format!("PERS num server_port := {};\n", free_port())).unwrap();
+    let start = std::time::Instant::now();
+    let ended = Proc::spawn(rapidvc_run(
+        rapidvc!(),
+        "tests/sockets/server.mod",
+        &[
+            "--pers".into(),
+            pers.display().to_string(),
+            "--max-time".into(),
+            "2".into(),
+        ],
+    ))
+    .wait(LIMIT);
+    assert!(!ended.timed_out, "{}", ended.stderr);
+    assert_eq!(ended.code, Some(1), "{}\n{}", ended.stdout, ended.stderr);
+    assert!(
+        ended
+            .stderr
+            .contains("waits beyond the time limit of 2 s (use --max-time to raise it)"),
+        "{}",
+        ended.stderr
+    );
+    assert!(ended.stderr.contains("SocketAccept"), "{}", ended.stderr);
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "the limit took {:?}",
+        start.elapsed()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -595,7 +595,11 @@ pub(super) fn start_view<'a>(
 ) -> Result<Option<view_options::ViewRun>, String> {
     let mut files = Vec::new();
     for prog in progs {
-        for m in prog.modules.iter().filter(|m| !m.stdlib) {
+        // The program's own files (not the embedded default USER module either).
+        let own = |m: &&crate::ir::ModuleInfo| {
+            !m.stdlib && sources.get(m.source).name != crate::interp::stdlib::DEFAULT_USER.0
+        };
+        for m in prog.modules.iter().filter(own) {
             if !files.contains(&m.source) {
                 files.push(m.source);
             }

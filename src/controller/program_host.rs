@@ -375,10 +375,35 @@ fn motion_changed(a: &MotionState, b: &MotionState) -> bool {
         || a.events_total != b.events_total
 }
 
+impl ControllerHost {
+    /// A wait that reaches past the time limit `max` (s).
+    fn beyond_limit(&self, max: f64) -> HostError {
+        let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
+        HostError::fatal(if realtime || self.outside_inputs {
+            format!(
+                "the program waits beyond the time limit of {max} s \
+                 (use --max-time to raise it)"
+            )
+        } else {
+            format!(
+                "the program waits beyond the virtual time limit of {max} s \
+                 (nothing in a virtual run can end this wait; use --max-time to raise it)"
+            )
+        })
+    }
+}
+
 impl Host for ControllerHost {
     fn now(&self) -> RobotTime {
         let robot = self.ctl.as_ref().map_or(RobotTime::ZERO, |c| c.time());
         robot.max(self.program_time)
+    }
+
+    fn check_time_limit(&mut self) -> Result<(), HostError> {
+        match self.max_time {
+            Some(max) if self.now() >= RobotTime::from_secs_f64(max) => Err(self.beyond_limit(max)),
+            _ => Ok(()),
+        }
     }
 
     /// Runs the robot until `deadline`, or until the motion state changes (a move ends or
@@ -404,18 +429,7 @@ impl Host for ControllerHost {
         if let Some(max) = limit
             && now >= target
         {
-            let realtime = self.ctl.as_ref().is_some_and(ControllerHandle::is_realtime);
-            return Err(HostError::fatal(if realtime || self.outside_inputs {
-                format!(
-                    "the program waits beyond the time limit of {max} s \
-                     (use --max-time to raise it)"
-                )
-            } else {
-                format!(
-                    "the program waits beyond the virtual time limit of {max} s \
-                     (nothing in a virtual run can end this wait; use --max-time to raise it)"
-                )
-            }));
+            return Err(self.beyond_limit(max));
         }
         if target <= now {
             return Ok(now);

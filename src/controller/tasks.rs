@@ -922,6 +922,22 @@ impl Host for TaskedHost {
         }
     }
 
+    fn check_time_limit(&mut self) -> Result<(), HostError> {
+        if self.motion {
+            return self.inner.check_time_limit();
+        }
+        match self.max_time {
+            Some(max) if self.now() >= RobotTime::from_secs_f64(max) => {
+                Err(HostError::fatal(format!(
+                    "task {}: the program waits beyond the time limit of {max} s \
+                     (use --max-time to raise it)",
+                    self.name
+                )))
+            }
+            _ => Ok(()),
+        }
+    }
+
     fn yield_now(&mut self) -> Result<(), HostError> {
         if self.task.sched.check_outside() {
             return Ok(());

@@ -390,6 +390,13 @@ pub trait Host {
         None
     }
 
+    /// An error when the run's time limit (`--max-time`) has been reached: for waits that
+    /// do not go through [`Host::wait_until`] (a socket instruction waits on its socket, in
+    /// real time, a slice at a time). A host without a limit never fails.
+    fn check_time_limit(&mut self) -> Result<(), HostError> {
+        Ok(())
+    }
+
     /// Run `f` on the system side where it may block for a short while (a socket
     /// instruction waiting for its peer, a few tens of milliseconds per call): a host that
     /// schedules several tasks lets the other tasks run meanwhile and notices a stop request

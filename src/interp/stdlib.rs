@@ -20,3 +20,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ),
     ("<stdlib>/ui.sys", include_str!("../../stdlib/ui.sys")),
 ];
+
+/// The controller's default USER system module (`reg1` … `reg5`, `clock1`): loaded with the
+/// user's modules (its data are ordinary variables) unless they have a module USER.
+pub const DEFAULT_USER: (&str, &str) = ("<stdlib>/user.sys", include_str!("../../stdlib/user.sys"));

@@ -6,7 +6,8 @@
 //! mutually exclusive optional alternatives. `REF` is a read-only reference used by natives
 //! that inspect big values without copying them (`Dim`). Type `anytype` accepts any value
 //! type, `anydata` any value type or array of one, `anynum` accepts `num` or `dnum`,
-//! `anysignal` any I/O signal or a string naming one.
+//! `anysignal` any I/O signal or a string naming one, `anydataorsignal` what `anydata`
+//! accepts or a signal variable.
 
 use std::fmt;
 

@@ -22,6 +22,9 @@ pub(crate) enum PTy {
     /// An I/O signal of any kind (`signaldi` … `signalgo`) or a string naming one
     /// (`AliasIO`, `ValidIO`).
     AnySignal,
+    /// Any value type, an array of one, or a signal variable (`GetDataVal`'s `Value`: a
+    /// signal variable is connected to the configured signal of that name).
+    AnyDataOrSignal,
     /// A switch.
     Switch,
 }
@@ -76,6 +79,8 @@ impl Checker<'_> {
                 PTy::AnyNum
             } else if p.ty.name.eq_ignore_ascii_case("anysignal") {
                 PTy::AnySignal
+            } else if p.ty.name.eq_ignore_ascii_case("anydataorsignal") {
+                PTy::AnyDataOrSignal
             } else {
                 match self.types.lookup(&p.ty.name) {
                     Some(id) => PTy::T(Ty {
@@ -474,6 +479,11 @@ impl Checker<'_> {
                 t.rank == 0
                     && (t.base == TypeId::STRING || self.types.name(t.base).starts_with("signal")),
                 "a signal or a string".to_string(),
+            ),
+            PTy::AnyDataOrSignal => (
+                self.types.is_value(t.base)
+                    || (t.rank == 0 && self.types.name(t.base).starts_with("signal")),
+                "a value, an array of values or a signal".to_string(),
             ),
             PTy::Switch => (false, "switch".to_string()),
         };

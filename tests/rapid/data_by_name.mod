@@ -48,6 +48,33 @@ MODULE data_by_name
     Assert v = 42;
   ENDPROC
 
+  ! A signal of the I/O configuration (tests/rapid/EIO.cfg) reached by name: GetDataVal
+  ! connects a signal variable to it, as AliasIO does (a communication module picks its
+  ! signals by name this way). A signal of another kind, or no such signal, is an error.
+  VAR signaldo out_by_name;
+  VAR signalao analog_by_name;
+  VAR signaldi in_by_name;
+
+  PROC test_getdataval_signal()
+    GetDataVal "do" + ValToStr(2), out_by_name;
+    SetDO out_by_name, 1;
+    Assert DOutput(do2) = 1;
+    SetDO do2, 0;
+    GetDataVal "AO1", analog_by_name;
+    SetAO analog_by_name, 12.5;
+    Assert AOutput(ao1) = 12.5;
+    SetAO ao1, 0;
+    caught := 0;
+    GetDataVal "do1", in_by_name;
+    Assert caught = ERR_SYMBOL_TYPE;
+    caught := 0;
+    GetDataVal "no_such_signal", out_by_name;
+    Assert caught = ERR_SYM_ACCESS;
+  ERROR
+    caught := ERRNO;
+    TRYNEXT;
+  ENDPROC
+
   ! SetDataVal example 1: SetDataVal "reg"+ValToStr(ReadNum(mycom)), value.
   PROC test_setdataval()
     VAR num n := 1;

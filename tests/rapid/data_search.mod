@@ -49,7 +49,8 @@ MODULE data_search
     WHILE GetNextSym(name, block) DO
       names := names + name + ",";
     ENDWHILE
-    Assert names = "mynum,othernum,";
+    ! The controller's USER module (reg1 … reg5) is searched too, as any module of the task.
+    Assert names = "reg1,reg2,reg3,reg4,reg5,mynum,othernum,";
   ENDPROC
 
   ! An unknown type is ERR_SYMBOL_TYPE; a bad regular expression ERR_ARGVALERR.

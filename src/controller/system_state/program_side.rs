@@ -219,7 +219,7 @@ impl ProgramSide {
                         .iter()
                         .map(|m| ModuleInfo {
                             name: m.name.clone(),
-                            system: m.stdlib,
+                            system: m.system,
                         })
                         .collect()
                 });

@@ -32,7 +32,10 @@ pub(super) fn register(r: &mut Registry) {
     r.add("PROC ExitCycle()", |_| Err(Unwind::ExitCycle));
     r.add(r"PROC WaitTime(\switch InPos, num Time)", wait_time);
     r.add(
-        r"PROC WaitUntil(\switch InPos, bool Cond, \num MaxTime, \VAR bool TimeFlag, \num PollRate)",
+        &format!(
+            r"PROC WaitUntil(\switch InPos, bool Cond, \num MaxTime, \VAR bool TimeFlag, \num PollRate, {})",
+            super::io::VISUAL
+        ),
         wait_until,
     );
     r.add(
@@ -119,7 +122,7 @@ fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
     let poll = cx.opt_f64(4)?.unwrap_or(0.1).max(0.004);
     let deadline = max.map(|m| cx.now().after_secs(m));
     let cond_expr = cx.arg_expr(1);
-    let (p, span) = (cx.p, cx.span);
+    let p = cx.p;
     let first = match cond_expr {
         // After waiting for the robot the condition is looked at again.
         Some(e) if cx.present(0) => cx.it.eval_bool(p, e)?,
@@ -132,7 +135,7 @@ fn wait_until(cx: &mut Ctx<'_>) -> Exec<Value> {
             Some(e) => {
                 let mut f =
                     |it: &mut crate::interp::Interp, p: &crate::ir::Program| it.eval_bool(p, e);
-                cx.it.wait(p, span, deadline, Some(&mut f), poll)?
+                super::io::wait_shown(cx, Some(5), deadline, poll, &mut f)?
             }
             None => false,
         }

@@ -4,7 +4,9 @@
 //! A name given as text is looked up as the calling routine would see it: its routine data
 //! first, then module data (a `LOCAL` declaration only from its own module). Only entire
 //! data objects are found (`"reg1"`, not `"reg{1}"` or `"p10.trans"`); predefined error
-//! numbers, signals and mechanical units are not data objects here. The value and the target
+//! numbers and mechanical units are not data objects here. A signal of the I/O
+//! configuration is one for `GetDataVal` into a signal variable of its kind: the variable
+//! is connected to it, as `AliasIO` does (`GetDataVal "do_gripper", sig;`). The value and the target
 //! must have the same type (`ERR_SYMBOL_TYPE`) and, for arrays, the same sizes (`ERR_INVDIM`);
 //! a name nobody declared, or a constant `SetDataVal` would change, is `ERR_SYM_ACCESS`.
 //!
@@ -24,7 +26,7 @@ use crate::ir::{GlobalOrigin, ParamSlot, Storage, Ty};
 /// Register this domain.
 pub(super) fn register(r: &mut Registry) {
     r.add(
-        r"PROC GetDataVal(string Object, \datapos Block, INOUT anydata Value)",
+        r"PROC GetDataVal(string Object, \datapos Block, INOUT anydataorsignal Value)",
         get_data_val,
     );
     r.add(
@@ -200,7 +202,16 @@ fn object(cx: &Ctx<'_>, target: Option<Ty>) -> Exec<(AbsPlace, Storage)> {
 }
 
 fn get_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
-    let (place, _) = object(cx, ref_ty(cx, VALUE))?;
+    let target = ref_ty(cx, VALUE);
+    // A signal variable and a name RAPID data does not have: the configured signal.
+    if let Some(t) = target
+        && t.rank == 0
+        && cx.it.prog.types.name(t.base).starts_with("signal")
+        && find_by_name(cx, cx.str(0)?).is_none()
+    {
+        return connect_signal(cx, t);
+    }
+    let (place, _) = object(cx, target)?;
     let value = cx
         .it
         .abs_get(&place)
@@ -213,6 +224,33 @@ fn get_data_val(cx: &mut Ctx<'_>) -> Exec<Value> {
         ));
     }
     cx.set(VALUE, value)?;
+    Ok(Value::Absent)
+}
+
+/// `GetDataVal "name", sig;` with a signal of the I/O configuration called `name`: `sig`
+/// (of type `ty`) is connected to it.
+fn connect_signal(cx: &mut Ctx<'_>, ty: Ty) -> Exec<Value> {
+    let name = cx.str(0)?.to_string();
+    let Some(kind) = cx.host().signal_kind(&name) else {
+        return Err(cx.error(
+            errnum::ERR_SYM_ACCESS,
+            format!(
+                "there is no data object or configured I/O signal `{name}` that this routine can reach"
+            ),
+        ));
+    };
+    let want = cx.it.prog.types.name(ty.base).to_string();
+    if !want.eq_ignore_ascii_case(kind.rapid_type()) {
+        return Err(cx.error(
+            errnum::ERR_SYMBOL_TYPE,
+            format!(
+                "`{name}` is a {} signal ({}), the variable a {want}",
+                kind.as_str(),
+                kind.rapid_type()
+            ),
+        ));
+    }
+    cx.set(VALUE, Value::Record(vec![Value::str(&name)].into()))?;
     Ok(Value::Absent)
 }
 

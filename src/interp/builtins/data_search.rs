@@ -4,7 +4,8 @@
 //!
 //! What rapidvc searches and decides where ABB documents nothing:
 //! * Module data of the program's own modules (and modules loaded at run time), in module
-//!   and declaration order. rapidvc's embedded system modules are not searched.
+//!   and declaration order, the controller's USER module (`reg1` … `reg5`) first. rapidvc's
+//!   other embedded system modules (speeds, zones, `tool0`, …) are not searched.
 //! * `\Object` is a regular expression matched anywhere in the name, without regard to case
 //!   (write `^…$` to match whole names); without it every name matches.
 //! * `\InRout` (routine data) is not supported: routine data exist only while their routine

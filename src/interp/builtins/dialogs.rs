@@ -395,7 +395,7 @@ fn tp_read_number(cx: &mut Ctx<'_>, name: &'static str, dnum: bool) -> Exec<Valu
 
 /// The header and message lines of a UI dialog: `\Header`, then `\Message` (index `msg`)
 /// or `\MsgArray` (index `msg + 1`), joined into one line with `\Wrap` (index `wrap`).
-fn ui_text(
+pub(super) fn ui_text(
     cx: &Ctx<'_>,
     header: Option<usize>,
     msgs: &[usize],

@@ -45,11 +45,15 @@ pub(super) fn register(r: &mut Registry) {
         pulse_do,
     );
     r.add(
-        r"PROC WaitDI(VAR signaldi Signal, dionum Value, \num MaxTime, \VAR bool TimeFlag)",
+        &format!(
+            r"PROC WaitDI(VAR signaldi Signal, dionum Value, \num MaxTime, \VAR bool TimeFlag, {VISUAL})"
+        ),
         wait_signal,
     );
     r.add(
-        r"PROC WaitDO(VAR signaldo Signal, dionum Value, \num MaxTime, \VAR bool TimeFlag)",
+        &format!(
+            r"PROC WaitDO(VAR signaldo Signal, dionum Value, \num MaxTime, \VAR bool TimeFlag, {VISUAL})"
+        ),
         wait_signal,
     );
     r.add("FUNC dionum DInput(VAR signaldi Signal)", read);
@@ -153,10 +157,11 @@ pub(super) fn wait_for_signal(
     cx: &mut Ctx<'_>,
     name: &str,
     max: Option<f64>,
+    visual: Option<usize>,
     test: impl Fn(f64) -> bool,
 ) -> Exec<bool> {
     let deadline = max.map(|m| cx.now().after_secs(m));
-    let (p, span) = (cx.p, cx.span);
+    let span = cx.span;
     let mut f = |it: &mut crate::interp::Interp, _: &crate::ir::Program| {
         let v = it
             .host
@@ -164,7 +169,61 @@ pub(super) fn wait_for_signal(
             .map_err(|e| it.host_error(e, span))?;
         Ok(test(v))
     };
-    cx.it.wait(p, span, deadline, Some(&mut f), 0.1)
+    wait_shown(cx, visual, deadline, 0.1, &mut f)
+}
+
+/// The FlexPendant message of a waiting instruction (`WaitUntil`, `WaitDI`, `WaitDO`),
+/// appended to its parameters: the box is shown once the wait has lasted `\VisualizeTime`
+/// seconds (at once without it) and closes when the wait ends; `\UIActiveSignal` is 1 while
+/// it is shown. rapidvc's FlexPendant is the `TPWrite` output, as for the UI dialogs.
+pub(super) const VISUAL: &str = r"\switch Visualize, \string Header, \string Message | string MsgArray{*}, \switch Wrap, \icondata Icon, \string Image, \num VisualizeTime, \VAR signaldo UIActiveSignal";
+
+/// Wait until `cond` holds (true) or `deadline` passes (false), polling every `poll` s;
+/// with `\Visualize` (argument `visual`, the first of [`VISUAL`]) present, the message is
+/// shown while the wait goes on.
+pub(super) fn wait_shown(
+    cx: &mut Ctx<'_>,
+    visual: Option<usize>,
+    deadline: Option<crate::time::RobotTime>,
+    poll: f64,
+    cond: &mut crate::interp::interrupts::WaitCond<'_>,
+) -> Exec<bool> {
+    let (p, span) = (cx.p, cx.span);
+    let Some(v) = visual.filter(|&v| cx.present(v)) else {
+        return cx.it.wait(p, span, deadline, Some(cond), poll);
+    };
+    let after = cx.opt_f64(v + 7)?.unwrap_or(0.0);
+    if !(after >= 0.0 && after.is_finite()) {
+        return Err(cx.error(
+            errnum::ERR_ARGVALERR,
+            format!("VisualizeTime {after} s is not a time (0 s or more)"),
+        ));
+    }
+    // Until the message is due, a plain wait (a condition true at once shows nothing).
+    let due = cx.now().after_secs(after);
+    let first = deadline.map_or(due, |d| d.min(due));
+    if cx.it.wait(p, span, Some(first), Some(cond), poll)? {
+        return Ok(true);
+    }
+    if deadline.is_some_and(|d| cx.now() >= d) {
+        return Ok(false);
+    }
+    let mut lines = super::dialogs::ui_text(cx, Some(v + 1), &[v + 2], Some(v + 3), Some(v + 4))?;
+    if lines.is_empty() {
+        lines.push(format!("== {} ==", cx.name()));
+    }
+    for line in lines {
+        cx.host().output(crate::interp::host::Output::TpWrite(line));
+    }
+    let active = cx.present(v + 8);
+    if active {
+        write(cx, v + 8, 1.0)?;
+    }
+    let r = cx.it.wait(p, span, deadline, Some(cond), poll);
+    if active {
+        write(cx, v + 8, 0.0)?;
+    }
+    r
 }
 
 /// Optional `\MaxTime` argument `i`: a time of 0 s or more, else `ERR_ARGVALERR`.
@@ -185,7 +244,7 @@ fn wait_signal(cx: &mut Ctx<'_>) -> Exec<Value> {
     let name = signal_name(cx, 0)?;
     let want = dio(cx, 1)?;
     let max = cx.opt_f64(2)?;
-    let done = wait_for_signal(cx, &name, max, |v| (v >= 0.5) == (want >= 0.5))?;
+    let done = wait_for_signal(cx, &name, max, Some(4), |v| (v >= 0.5) == (want >= 0.5))?;
     if !done {
         if cx.present(3) {
             cx.set(3, Value::Bool(true))?;

@@ -186,7 +186,7 @@ fn wait_level(cx: &mut Ctx<'_>, noteq: Option<usize>) -> Exec<Value> {
     let ne = noteq.is_some_and(|i| cx.present(i));
     let want = cx.f64(first + 2)?;
     let max = max_time(cx, first + 3)?;
-    let reached = wait_for_signal(cx, &name, max, |v| {
+    let reached = wait_for_signal(cx, &name, max, None, |v| {
         if lt {
             v < want
         } else if gt {

@@ -203,9 +203,11 @@ fn wait<T>(
                 format!("{} did not complete within {time} s (\\Time)", cx.name()),
             ));
         }
-        // Traps and a stop request, without letting the program's clock run.
+        // Traps and a stop request, without letting the program's clock run; in real time
+        // the run's time limit (--max-time) ends the wait as it ends any other.
         let now = cx.now();
         cx.wait_host(Some(now), 1.0, |_| Ok(false))?;
+        cx.host().check_time_limit().map_err(|e| cx.host_err(e))?;
     }
 }
 
