@@ -1033,3 +1033,59 @@ ENDMODULE
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--pers` with several tasks keeps the persistents the tasks share: both tasks start from
+/// the stored value, the file gets the value the last writer left (T_B writes after T_ROB1),
+/// and the next run starts from it. A TASK PERS (one value per task) is refused before the
+/// run, by name.
+#[test]
+fn pers_file_of_a_system_keeps_the_shared_persistents() {
+    let (dir, mut args) = system(
+        "persfile",
+        &[
+            (
+                "T_ROB1",
+                MOTION,
+                "MODULE a\n  PERS num runs := 0;\n  PERS string last := \"\";\n  PROC main()\n    TPWrite \"a: \" \\Num:=runs;\n    runs := runs + 1;\n    last := \"a\";\n  ENDPROC\nENDMODULE\n",
+            ),
+            (
+                "T_B",
+                "",
+                "MODULE b\n  PERS num runs := 0;\n  PERS string last := \"\";\n  PERS num only_b := 1;\n  PROC main()\n    WaitTime 0.5;\n    TPWrite \"b: \" \\Num:=runs;\n    runs := runs + 10;\n    last := \"b\";\n    only_b := only_b * 2;\n  ENDPROC\nENDMODULE\n",
+            ),
+        ],
+    );
+    args.splice(1..1, ["--pers".to_string(), "cell.pers".to_string()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let first = run_in(&dir, &args);
+    assert_eq!(first.code, Some(0), "{}", first.stderr);
+    assert_eq!(first.stdout, "[T_ROB1] a: 0\n[T_B] b: 1\n");
+    let stored = std::fs::read_to_string(dir.join("cell.pers")).unwrap();
+    for line in [
+        "PERS num runs := 11;",
+        "PERS string last := \"b\";",
+        "PERS num only_b := 2;",
+    ] {
+        assert!(stored.contains(line), "{line} in\n{stored}");
+    }
+    let second = run_in(&dir, &args);
+    assert_eq!(second.code, Some(0), "{}", second.stderr);
+    assert_eq!(second.stdout, "[T_ROB1] a: 11\n[T_B] b: 12\n");
+    let stored = std::fs::read_to_string(dir.join("cell.pers")).unwrap();
+    assert!(stored.contains("PERS num runs := 22;"), "{stored}");
+    assert!(stored.contains("PERS num only_b := 4;"), "{stored}");
+    std::fs::write(
+        dir.join("t_b.mod"),
+        "MODULE b\n  TASK PERS num mine := 0;\n  PROC main()\n  ENDPROC\nENDMODULE\n",
+    )
+    .unwrap();
+    let refused = run_in(&dir, &args);
+    assert_eq!(refused.code, Some(2), "{}", refused.stderr);
+    assert!(
+        refused.stderr.contains("`mine` of task T_B is a TASK PERS"),
+        "{}",
+        refused.stderr
+    );
+    assert!(refused.stdout.is_empty(), "{}", refused.stdout);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -464,7 +464,7 @@ fn entry_candidates(prog: &crate::ir::Program) -> String {
 }
 
 /// The run's outputs can be written, and none is an input of the run or another output.
-fn check_paths(args: &RunArgs) -> Result<(), String> {
+pub(super) fn check_paths(args: &RunArgs) -> Result<(), String> {
     let programs = program::rapid_files::find_rapid_files(&args.files).unwrap_or_default();
     let config_files: Vec<PathBuf> = program::config_dir(args.config.as_deref(), &args.files)
         .map(|dir| {
@@ -502,7 +502,7 @@ fn check_paths(args: &RunArgs) -> Result<(), String> {
 }
 
 /// Read and parse `--pers` (nothing when the file does not exist yet).
-fn read_pers(path: &Path) -> Result<Option<StoredPers>, String> {
+pub(super) fn read_pers(path: &Path) -> Result<Option<StoredPers>, String> {
     if !path.exists() {
         return Ok(None);
     }

@@ -415,14 +415,7 @@ impl Interp {
         if y.is_nan() {
             return Err(self.take_pending(b.span));
         }
-        Ok(match op {
-            BinOp::NumLt => x < y,
-            BinOp::NumLe => x <= y,
-            BinOp::NumGt => x > y,
-            BinOp::NumGe => x >= y,
-            BinOp::NumEq => x == y,
-            _ => x != y,
-        })
+        Ok(cmp_num(op, x, y))
     }
 
     /// A `num` leaf (constant, local, global) without a call, if `e` is one.
@@ -616,4 +609,17 @@ pub(crate) fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
         a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
         a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
     ]
+}
+
+/// A `num` comparison (`op` one of the six) of evaluated operands.
+#[inline(always)]
+pub(crate) fn cmp_num(op: BinOp, x: f32, y: f32) -> bool {
+    match op {
+        BinOp::NumLt => x < y,
+        BinOp::NumLe => x <= y,
+        BinOp::NumGt => x > y,
+        BinOp::NumGe => x >= y,
+        BinOp::NumEq => x == y,
+        _ => x != y,
+    }
 }

@@ -119,4 +119,102 @@ MODULE num_routines
     Assert calls = 6;
     Assert tab{3} = 31;
   ENDPROC
+
+  ! WHILE loops run on the slab too (a routine with loops that calls such routines).
+  VAR num sdata{9} := [5, 3, 9, 1, 7, 2, 8, 6, 4];
+
+  PROC qsort(num lo, num hi)
+    VAR num i;
+    VAR num j;
+    VAR num pivot;
+    VAR num t;
+    IF lo >= hi RETURN;
+    pivot := sdata{(lo + hi) DIV 2};
+    i := lo;
+    j := hi;
+    WHILE i <= j DO
+      WHILE sdata{i} < pivot DO
+        i := i + 1;
+      ENDWHILE
+      WHILE sdata{j} > pivot DO
+        j := j - 1;
+      ENDWHILE
+      IF i <= j THEN
+        t := sdata{i};
+        sdata{i} := sdata{j};
+        sdata{j} := t;
+        i := i + 1;
+        j := j - 1;
+      ENDIF
+    ENDWHILE
+    qsort lo, j;
+    qsort i, hi;
+  ENDPROC
+
+  ! RETURN from inside a WHILE ends the routine.
+  FUNC num find(num x)
+    VAR num i := 1;
+    WHILE i <= 5 DO
+      IF tab{i} = x RETURN i + fib(0);
+      i := i + 1;
+    ENDWHILE
+    RETURN -1;
+  ENDFUNC
+
+  ! The condition of a WHILE fails (an index out of bounds) after some rounds.
+  FUNC num run_off(num k)
+    VAR num i := 1;
+    WHILE tab{i} > k DO
+      i := i + 1 + fib(0);
+    ENDWHILE
+    RETURN i;
+  ENDFUNC
+
+  ! `local + constant` beyond the range of num.
+  FUNC num grow(num n)
+    RETURN n + 3E38 + fib(0);
+  ENDFUNC
+
+  PROC test_while_on_slab()
+    qsort 1, 9;
+    FOR i FROM 1 TO 9 DO
+      Assert sdata{i} = i;
+    ENDFOR
+    sdata := [9, 9, 1, 1, 5, 5, 2, 2, 7];
+    qsort 1, 9;
+    Assert sdata{1} = 1 AND sdata{2} = 1 AND sdata{3} = 2 AND sdata{4} = 2;
+    Assert sdata{5} = 5 AND sdata{6} = 5 AND sdata{7} = 7 AND sdata{8} = 9 AND sdata{9} = 9;
+    tab := [1, 2, 3, 4, 5];
+    Assert find(4) = 4;
+    Assert find(6) = -1;
+    Assert run_off(2) = 1;
+  ENDPROC
+
+  PROC test_while_condition_error()
+    VAR num caught := 0;
+    VAR num r := 0;
+    tab := [1, 2, 3, 4, 5];
+    r := run_off(0);
+    Assert caught = 1;
+    Assert r = 0;
+  ERROR
+    IF ERRNO = ERR_ILLDIM THEN
+      caught := 1;
+      TRYNEXT;
+    ENDIF
+  ENDPROC
+
+  PROC test_local_plus_constant_limit()
+    VAR num caught := 0;
+    VAR num r := 0;
+    r := grow(1);
+    Assert r = 3E38;
+    r := grow(3E38);
+    Assert caught = 1;
+  ERROR
+    IF ERRNO = ERR_NUM_LIMIT THEN
+      caught := 1;
+      TRYNEXT;
+    ENDIF
+  ENDPROC
 ENDMODULE

@@ -15,7 +15,7 @@ use crate::cli::{answers, interrupt, progress_line};
 use crate::controller::ControllerHost;
 use crate::controller::tasks::{DEFAULT_SLICE, Scheduler, TaskSpec, TaskedHost, run_tasks};
 use crate::interp::tasks::SharedPers;
-use crate::interp::{Host, Interp, Outcome, VirtualHost};
+use crate::interp::{Host, Interp, Outcome, VirtualHost, pers};
 use crate::mass_storage::MassStorage;
 use crate::program::system::{LoadedSystem, load_system};
 use crate::source::SourceMap;
@@ -175,6 +175,19 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         ..
     } = loaded;
     let sources = Arc::new(sources);
+    if let Err(msg) = super::check_paths(&args) {
+        eprintln!("error: {msg}");
+        return ExitCode::from(2);
+    }
+    let stored = match args.pers.as_deref().map(super::read_pers).transpose() {
+        Ok(s) => s.flatten(),
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return ExitCode::from(2);
+        }
+    };
+    // Each task's persistents when its program has ended (task index, values).
+    let pers_out: Arc<TaskPers> = Arc::default();
     let view = match super::start_view(
         &args,
         tasks.iter().filter_map(|t| t.program.as_deref()),
@@ -309,6 +322,9 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         };
         let max_steps = args.max_steps;
         let announce = args.trace.is_some() || args.plot.is_some() || args.view.wanted();
+        let pers_in = stored.as_ref().map(|s| s.entries.clone());
+        let pers_out = Arc::clone(&pers_out);
+        let first_task = bodies.is_empty();
         bodies.push(Box::new(move || {
             let mut it = Interp::new(prog, &registry, Box::new(host));
             it.set_module_loader(Box::new(loader));
@@ -320,6 +336,18 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
             }
             it.set_stack_budget(6 << 20);
             let init = it.init();
+            // The stored values of the shared persistents, before the task joins the others
+            // (each task loads the same values; the warnings are printed once).
+            if init.is_ok()
+                && let Some(entries) = &pers_in
+            {
+                let (_, warnings) = it.load_persistents(entries);
+                if first_task {
+                    for w in warnings {
+                        eprintln!("warning: {w}");
+                    }
+                }
+            }
             if init.is_ok()
                 && let Some(v) = &frames
             {
@@ -353,6 +381,9 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
                 }
             };
             let end = finish_task(&mut it, end, announce, &sched);
+            if let Ok(mut out) = pers_out.lock() {
+                out.push((i, it.persistents()));
+            }
             if let Ok(mut r) = running.lock() {
                 r.retain(|t| *t != name);
             }
@@ -367,6 +398,18 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         &args,
         egm_log_written,
     );
+    if let Some(path) = &args.pers {
+        let values = shared_persistents(&pers_out, &store);
+        let original = stored.as_ref().map(|p| p.text.as_str());
+        let text = pers::write(original, &values);
+        if let Err(e) = crate::cli::files::replace(path, &text) {
+            eprintln!(
+                "error: cannot write {}: {e} (the file was left as it was)",
+                path.display()
+            );
+            return ExitCode::from(2);
+        }
+    }
     let was_interrupted = interrupted.load(Ordering::Relaxed);
     show_running(code != ExitCode::SUCCESS);
     if let Some(v) = view {
@@ -384,6 +427,33 @@ pub fn run(args: RunArgs, interrupted: Arc<AtomicBool>) -> ExitCode {
         return ExitCode::from(interrupt::EXIT_INTERRUPTED);
     }
     code
+}
+
+/// Each task's persistents when its program has ended: (task index, values).
+type TaskPers = std::sync::Mutex<Vec<(usize, Vec<pers::PersValue>)>>;
+
+/// The persistents of a system's run for `--pers`: every task's, in task order, one entry
+/// per name, each with the value the tasks share at the end (a task's own copy may be older
+/// than the last write of another task).
+fn shared_persistents(
+    out: &TaskPers,
+    store: &SharedPers,
+) -> Vec<pers::PersValue> {
+    let mut per_task = out.lock().map(|v| v.clone()).unwrap_or_default();
+    per_task.sort_by_key(|(i, _)| *i);
+    let mut values: Vec<pers::PersValue> = Vec::new();
+    for (_, list) in per_task {
+        for mut v in list {
+            if values.iter().any(|w| w.name.eq_ignore_ascii_case(&v.name)) {
+                continue;
+            }
+            if let Some(shared) = store.get(&v.name) {
+                v.value = shared;
+            }
+            values.push(v);
+        }
+    }
+    values
 }
 
 /// A task's output sink: printed, and shown in the view when there is one.
@@ -444,10 +514,22 @@ fn tasks_use_sockets(loaded: &LoadedSystem) -> bool {
 /// What a run of several tasks does not support yet (checked before anything runs).
 fn refuse(args: &RunArgs, loaded: &LoadedSystem) -> Option<String> {
     if args.pers.is_some() {
-        return Some(
-            "--pers is not supported with several tasks yet (the task-global persistents are shared)"
-                .into(),
-        );
+        // The file holds one value per name: the task-global persistents, which every task
+        // shares, fit; a TASK PERS has one value in each task.
+        for t in &loaded.tasks {
+            let Some(prog) = &t.program else { continue };
+            if let Some(g) = prog.globals.iter().find(|g| {
+                g.task
+                    && g.storage == crate::ir::Storage::Pers
+                    && matches!(g.origin, crate::ir::GlobalOrigin::Module(m)
+                        if prog.modules.get(m.0 as usize).is_some_and(|m| !m.stdlib))
+            }) {
+                return Some(format!(
+                    "--pers with several tasks keeps the persistents the tasks share; `{}` of task {} is a TASK PERS (a value per task), which a --pers file cannot hold yet",
+                    g.name, t.config.name
+                ));
+            }
+        }
     }
     if args.entry != "main" {
         return Some(

@@ -1,13 +1,15 @@
 //! `num` routines on a slab of `f32` frames: a FUNC or PROC whose parameters are `num`
 //! value parameters and whose routine data are `num`s, with no ERROR or UNDO handler, whose
 //! body uses only its own data, `num` module data (scalars and 1-D arrays), arithmetic,
-//! comparisons, IF, RETURN and calls of such routines, and which calls at least one (a
-//! recursion, a function of functions: where the cost of calls dominates), runs here: its
+//! comparisons, IF, WHILE, RETURN and calls of such routines, and which calls at least one
+//! (a recursion, a function of functions: where the cost of calls dominates), runs here: its
 //! slots are plain `f32`s in `Interp::nslab` (no `Value`, no value-stack bookkeeping),
 //! RETURN is the result of its statement list (not an unwind through every block), errors
 //! wait in `Interp::pending` instead of travelling in `Result`s, and a call pushes only the
-//! frame record errors, hooks and interrupts read. Loops and routines that call nothing
-//! stay on the specialised closures, which run them faster.
+//! frame record errors, hooks and interrupts read. Routines that call nothing stay on the
+//! specialised closures, which run them faster. The commonest shapes (`local + k`,
+//! `local < k`, `array{local}`) are read inline, without the dispatch of the general
+//! expression.
 //!
 //! Everything observable is as on the general path: a step per statement, the
 //! per-statement slow path (budget, hook, interrupts, tasks) at the same points, the same
@@ -18,6 +20,7 @@
 
 use super::DivK;
 use crate::interp::error::{Exec, Unwind};
+use crate::interp::expr::cmp_num as cmp;
 use crate::interp::value::Value;
 use crate::interp::{Frame, Interp};
 use crate::ir::{
@@ -41,6 +44,8 @@ pub(crate) struct NRoutine {
     data: Box<[(u32, f32)]>,
     /// Values a call adds to the task's data ([`crate::ir::limits`]).
     values: u64,
+    /// The routine's head (where its frame record points on entry).
+    head: Span,
     body: NBlock,
 }
 
@@ -70,6 +75,8 @@ enum NS {
     Ret(Option<SpannedNE>),
     /// A PROC call.
     Call(Box<NCall>),
+    /// `WHILE cond DO body ENDWHILE` (a body of at least one statement).
+    While(Box<(NC, NBlock)>),
 }
 
 /// An element of a 1-D `num` array held by a global.
@@ -87,8 +94,13 @@ struct NElem {
 enum NE {
     K(f32),
     L(u32),
+    /// `local + k` (`local - k` as `local + -k`: the same IEEE result), and the span of
+    /// the whole (a counter step, a recursion's argument).
+    LAdd(u32, f32, Span),
     G(u32, Span),
     E(Box<NElem>),
+    /// `global{local}` (the index a local: read without evaluating an expression).
+    EL(u32, u32, Box<NElem>),
     B(Box<(BinOp, NE, NE, Span)>),
     M(Box<(NE, DivK, bool, Span)>),
     Neg(Box<NE>),
@@ -98,6 +110,8 @@ enum NE {
 /// A condition.
 enum NC {
     K(bool),
+    /// `local op k`, and the local's span.
+    CmpLK(BinOp, u32, f32, Span),
     Cmp(Box<(BinOp, NE, Span, NE, Span)>),
     Logic(Box<(BinOp, NC, NC)>),
     Not(Box<NC>),
@@ -209,6 +223,7 @@ impl Comp<'_> {
             n_slots: r.n_slots,
             data,
             values: super::FrameData::of(self.p, r).fixed,
+            head: r.head_span,
             body: self.block(&r.body)?,
         })
     }
@@ -266,6 +281,10 @@ impl Comp<'_> {
                     None => None,
                 },
             ),
+            // An empty body takes its step at the loop's head (general path).
+            StmtKind::While { cond, body } if !body.stmts.is_empty() => {
+                NS::While(Box::new((self.cond(cond)?, self.block(body)?)))
+            }
             StmtKind::Return(None) if self.r.kind == RoutineKind::Proc => NS::Ret(None),
             StmtKind::Return(Some(e)) if self.r.kind == RoutineKind::Func(Ty::NUM) => {
                 NS::Ret(Some((self.num(e)?, e.span)))
@@ -335,10 +354,17 @@ impl Comp<'_> {
             ExprKind::Load(pl) => {
                 let mut el = self.elem(pl)?;
                 el.span = e.span;
-                NE::E(Box::new(el))
+                match el.idx {
+                    NE::L(s) => NE::EL(el.g, s, Box::new(el)),
+                    _ => NE::E(Box::new(el)),
+                }
             }
             ExprKind::Binary(op, a, b) if op.is_num_arith() => {
-                NE::B(Box::new((*op, self.num(a)?, self.num(b)?, e.span)))
+                match (*op, self.num(a)?, self.num(b)?) {
+                    (BinOp::NumAdd, NE::L(s), NE::K(k)) => NE::LAdd(s, k, e.span),
+                    (BinOp::NumSub, NE::L(s), NE::K(k)) => NE::LAdd(s, -k, e.span),
+                    (op, x, y) => NE::B(Box::new((op, x, y, e.span))),
+                }
             }
             ExprKind::NumModDivK(a, k, is_mod) if *k != 0 => {
                 NE::M(Box::new((self.num(a)?, DivK::new(*k), *is_mod, e.span)))
@@ -365,7 +391,10 @@ impl Comp<'_> {
                 | BinOp::NumNe),
                 a,
                 b,
-            ) => NC::Cmp(Box::new((*op, self.num(a)?, a.span, self.num(b)?, b.span))),
+            ) => match (self.num(a)?, self.num(b)?) {
+                (NE::L(s), NE::K(k)) => NC::CmpLK(*op, s, k, a.span),
+                (x, y) => NC::Cmp(Box::new((*op, x, a.span, y, b.span))),
+            },
             ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
                 NC::Logic(Box::new((*op, self.cond(a)?, self.cond(b)?)))
             }
@@ -463,9 +492,8 @@ impl Interp {
     /// `span`: the result (0 for a PROC; NaN: the error is pending).
     #[inline(always)]
     fn slab_run(&mut self, c: &super::Code, nr: &NRoutine, base: usize, span: Span) -> f32 {
-        let r = c.prog.routine(nr.rid);
         if self.data_values.saturating_add(nr.values) > crate::ir::limits::MAX_TASK_VALUES {
-            let u = self.data_limit_error(r, nr.values, span);
+            let u = self.data_limit_error(c.prog.routine(nr.rid), nr.values, span);
             return self.fail_nf(u);
         }
         self.data_values += nr.values;
@@ -475,7 +503,7 @@ impl Interp {
         self.frames.push(Frame {
             routine: nr.rid,
             bp: self.sp as u32,
-            at: r.head_span,
+            at: nr.head,
             handling: None,
             retries: 0,
         });
@@ -491,7 +519,7 @@ impl Interp {
         let x = match st {
             St::Ret(x) => x,
             St::Next if nr.func => {
-                let u = self.fncnoret(r);
+                let u = self.fncnoret(c.prog.routine(nr.rid));
                 self.fail_nf(u)
             }
             St::Next => 0.0,
@@ -514,7 +542,7 @@ impl Interp {
     }
 
     /// A call from slab code (NaN: the error is pending).
-    #[inline(always)]
+    #[inline(never)]
     fn ncall(&mut self, c: &super::Code, call: &NCall) -> f32 {
         if let Err(u) = self.check_depth(call.span) {
             return self.fail_nf(u);
@@ -721,6 +749,19 @@ impl Interp {
                     return St::Fail;
                 }
             }
+            NS::While(w) => {
+                let (cond, body) = &**w;
+                loop {
+                    match self.nc(c, cond) {
+                        Some(true) => match self.nblock(c, body) {
+                            St::Next => {}
+                            end => return end,
+                        },
+                        Some(false) => break,
+                        None => return St::Fail,
+                    }
+                }
+            }
         }
         St::Next
     }
@@ -750,6 +791,28 @@ impl Interp {
                 Some(x) => *x,
                 None => f32::NAN,
             },
+            NE::LAdd(s, k, span) => match self.nslab.get(self.nbp + *s as usize) {
+                Some(x) => {
+                    let r = *x + *k;
+                    if r.is_finite() {
+                        r
+                    } else {
+                        self.num_result(r, *span)
+                    }
+                }
+                None => f32::NAN,
+            },
+            NE::Call(call) => self.ncall(c, call),
+            NE::EL(g, s, el) => {
+                let i = match self.nslab.get(self.nbp + *s as usize) {
+                    Some(i) => *i,
+                    None => return f32::NAN,
+                };
+                match self.elem_mut(*g, i) {
+                    Some(x) => *x,
+                    None => self.elem_slow(c, el, i),
+                }
+            }
             _ => self.ne_op(c, e),
         }
     }
@@ -757,8 +820,7 @@ impl Interp {
     #[inline(never)]
     fn ne_op(&mut self, c: &super::Code, e: &NE) -> f32 {
         match e {
-            NE::K(x) => *x,
-            NE::L(_) => self.ne(c, e),
+            NE::K(_) | NE::L(_) | NE::LAdd(..) | NE::Call(_) | NE::EL(..) => self.ne(c, e),
             NE::G(g, span) => match self.globals.get(*g as usize) {
                 Some(Value::Num(x)) => *x,
                 _ => self.nf_slow(
@@ -776,16 +838,7 @@ impl Interp {
                 }
                 match self.elem_mut(el.g, i) {
                     Some(x) => *x,
-                    None => {
-                        let pl = el.with_index(i);
-                        self.nf_slow(
-                            &c.prog,
-                            &Expr {
-                                kind: ExprKind::Load(Box::new(pl)),
-                                span: el.span,
-                            },
-                        )
-                    }
+                    None => self.elem_slow(c, el, i),
                 }
             }
             NE::B(b) => {
@@ -806,14 +859,35 @@ impl Interp {
                 self.mod_div_c(x, d, *is_mod, *span)
             }
             NE::Neg(a) => -self.ne(c, a),
-            NE::Call(call) => self.ncall(c, call),
         }
     }
 
+    /// An element the fast read gave up on (out of bounds, not a `num`): the general path
+    /// reads it or raises its error.
+    #[cold]
+    #[inline(never)]
+    fn elem_slow(&mut self, c: &super::Code, el: &NElem, i: f32) -> f32 {
+        let pl = el.with_index(i);
+        self.nf_slow(
+            &c.prog,
+            &Expr {
+                kind: ExprKind::Load(Box::new(pl)),
+                span: el.span,
+            },
+        )
+    }
+
     /// A condition (`None`: its error is pending).
+    #[inline(always)]
     fn nc(&mut self, c: &super::Code, e: &NC) -> Option<bool> {
         match e {
-            NC::K(b) => Some(*b),
+            NC::CmpLK(op, s, k, sa) => match self.nslab.get(self.nbp + *s as usize) {
+                Some(x) => Some(cmp(*op, *x, *k)),
+                None => {
+                    self.nan_fail(*sa);
+                    None
+                }
+            },
             NC::Cmp(b) => {
                 let (op, a, sa, b, sb) = &**b;
                 let x = self.ne(c, a);
@@ -826,15 +900,17 @@ impl Interp {
                     self.nan_fail(*sb);
                     return None;
                 }
-                Some(match op {
-                    BinOp::NumLt => x < y,
-                    BinOp::NumLe => x <= y,
-                    BinOp::NumGt => x > y,
-                    BinOp::NumGe => x >= y,
-                    BinOp::NumEq => x == y,
-                    _ => x != y,
-                })
+                Some(cmp(*op, x, y))
             }
+            _ => self.nc_op(c, e),
+        }
+    }
+
+    #[inline(never)]
+    fn nc_op(&mut self, c: &super::Code, e: &NC) -> Option<bool> {
+        match e {
+            NC::K(b) => Some(*b),
+            NC::CmpLK(..) | NC::Cmp(_) => self.nc(c, e),
             NC::Logic(b) => {
                 // Both operands are always evaluated (no short circuit).
                 let (op, a, b) = &**b;
