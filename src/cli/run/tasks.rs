@@ -435,10 +435,7 @@ type TaskPers = std::sync::Mutex<Vec<(usize, Vec<pers::PersValue>)>>;
 /// The persistents of a system's run for `--pers`: every task's, in task order, one entry
 /// per name, each with the value the tasks share at the end (a task's own copy may be older
 /// than the last write of another task).
-fn shared_persistents(
-    out: &TaskPers,
-    store: &SharedPers,
-) -> Vec<pers::PersValue> {
+fn shared_persistents(out: &TaskPers, store: &SharedPers) -> Vec<pers::PersValue> {
     let mut per_task = out.lock().map(|v| v.clone()).unwrap_or_default();
     per_task.sort_by_key(|(i, _)| *i);
     let mut values: Vec<pers::PersValue> = Vec::new();
