@@ -91,6 +91,20 @@ pub enum ModuleItem {
 }
 
 impl ModuleItem {
+    /// The name this item declares in its module's scope, and where (`text` is the file's,
+    /// in which a packed declaration's name is read without reading the rest of it).
+    pub fn name<'a>(&'a self, source: SourceId, text: &'a str) -> Option<(&'a str, Span)> {
+        let ident = |id: &'a Ident| (id.node.as_str(), id.span);
+        match self {
+            ModuleItem::Record(r) => Some(ident(&r.name)),
+            ModuleItem::Alias(a) => Some(ident(&a.name)),
+            ModuleItem::Data(d) => Some(ident(&d.name)),
+            ModuleItem::PackedData(d) => Some(d.name(source, text)),
+            ModuleItem::Routine(r) => Some(ident(&r.name)),
+            ModuleItem::Placeholder(_) => None,
+        }
+    }
+
     /// The data declaration of a [`ModuleItem::Data`] or [`ModuleItem::PackedData`] item
     /// (`None` for any other item), in the file `source` whose text is `text`
     /// ([`File::text`]).

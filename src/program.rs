@@ -131,30 +131,35 @@ fn default_user_module(
     if has_own {
         return None;
     }
-    let declared: std::collections::HashSet<String> = user
-        .iter()
-        .flat_map(|f| {
-            f.modules.iter().flat_map(move |m| {
-                m.items
-                    .iter()
-                    .filter_map(move |item| item.data(f.span.source, &f.text))
-                    .map(|d| d.name.node.as_str().to_ascii_lowercase())
+    // The names of the default module (one declaration per line: `  VAR num reg1 := 0;`)
+    // that the user's modules declare themselves, read in one pass without unpacking their
+    // declarations.
+    let var_name = |line: &str| -> Option<String> {
+        let mut words = line.split_whitespace();
+        (words.next() == Some("VAR"))
+            .then(|| {
+                words
+                    .nth(1)
+                    .map(|n| n.trim_end_matches(';').to_ascii_lowercase())
             })
-        })
-        .collect();
-    // One declaration per line (`  VAR num reg1 := 0;`): the text itself leaves the user's
-    // names out, so that a module loaded at run time (which parses the program's texts
-    // again) sees the same module.
+            .flatten()
+    };
+    let defaults: Vec<String> = text.lines().filter_map(var_name).collect();
+    let mut taken: Vec<&str> = Vec::new();
+    for f in user {
+        for item in f.modules.iter().flat_map(|m| &m.items) {
+            if let Some((n, _)) = item.name(f.span.source, &f.text)
+                && let Some(d) = defaults.iter().find(|d| d.eq_ignore_ascii_case(n))
+            {
+                taken.push(d);
+            }
+        }
+    }
+    // The text itself leaves the user's names out, so that a module loaded at run time
+    // (which parses the program's texts again) sees the same module.
     let text: String = text
         .lines()
-        .filter(|line| {
-            let words: Vec<&str> = line.split_whitespace().collect();
-            !(words.first() == Some(&"VAR")
-                && words.get(2).is_some_and(|n| {
-                    let n = n.trim_end_matches(';').to_ascii_lowercase();
-                    declared.contains(&n)
-                }))
-        })
+        .filter(|line| var_name(line).is_none_or(|n| !taken.contains(&n.as_str())))
         .map(|line| format!("{line}\n"))
         .collect();
     let id = sources.add(name, text.clone());

@@ -37,7 +37,7 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
         for (i, item) in m.items.iter().enumerate() {
             // The module-level duplicate first, then what is inside the item, as one thread
             // reports them.
-            if let Some(name) = item_name(item, source, &file.text) {
+            if let Some(name) = item.name(source, &file.text) {
                 let mut c = Checker {
                     diags: &mut *diags,
                     file: source,
@@ -58,24 +58,6 @@ pub(crate) fn check(file: &File, diags: &mut Diagnostics, options: &ParseOptions
                 c.item(item);
             }
         }
-    }
-}
-
-/// The name an item declares in its module's scope, and where (`text` is the file's, where a
-/// packed declaration's name is read).
-fn item_name<'a>(
-    item: &'a ModuleItem,
-    source: crate::source::SourceId,
-    text: &'a str,
-) -> Option<(&'a str, Span)> {
-    let ident = |id: &'a Ident| (id.node.as_str(), id.span);
-    match item {
-        ModuleItem::Record(r) => Some(ident(&r.name)),
-        ModuleItem::Alias(a) => Some(ident(&a.name)),
-        ModuleItem::Data(d) => Some(ident(&d.name)),
-        ModuleItem::PackedData(d) => Some(d.name(source, text)),
-        ModuleItem::Routine(r) => Some(ident(&r.name)),
-        ModuleItem::Placeholder(_) => None,
     }
 }
 
