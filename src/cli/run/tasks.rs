@@ -439,9 +439,10 @@ fn shared_persistents(out: &TaskPers, store: &SharedPers) -> Vec<pers::PersValue
     let mut per_task = out.lock().map(|v| v.clone()).unwrap_or_default();
     per_task.sort_by_key(|(i, _)| *i);
     let mut values: Vec<pers::PersValue> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
     for (_, list) in per_task {
         for mut v in list {
-            if values.iter().any(|w| w.name.eq_ignore_ascii_case(&v.name)) {
+            if !seen.insert(v.name.to_ascii_uppercase()) {
                 continue;
             }
             if let Some(shared) = store.get(&v.name) {
